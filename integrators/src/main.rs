@@ -1,0 +1,285 @@
+//! The `footprint` command line.
+
+use anyhow::{Context, Result, bail};
+use clap::{Parser, Subcommand, ValueEnum};
+use footprint::image_io::{write_exr, write_png};
+use footprint::loader::load_scene;
+use footprint::scene::Scene;
+use footprint_integrators::{Integrator, RenderOptions, render};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+mod bench;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "footprint",
+    version,
+    about = "A physically based CPU renderer that guides light and view paths with particle maps",
+    long_about = "footprint renders scenes described in TOML (see README.md, \"Scene format\") with \
+                  path tracing or light tracing.\n\nExample:\n  footprint render scenes/door/door.toml --spp 64"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum IntegratorArg {
+    /// Path tracing with next-event estimation and MIS
+    Pt,
+    /// Light tracing: paths from the lights connected to the camera
+    Lt,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Render a scene to an EXR (linear float RGB) and a PNG preview
+    Render {
+        /// Scene file (.toml)
+        scene: PathBuf,
+        /// Integrator [default: the scene's render.integrator, else pt]
+        #[arg(long, value_enum)]
+        integrator: Option<IntegratorArg>,
+        /// Samples per pixel (pt) or light paths per pixel (lt) [default: the scene's render.spp, else 16]
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+        spp: Option<u32>,
+        /// Render for this many seconds instead of a sample count
+        #[arg(long, conflicts_with = "spp")]
+        time: Option<f64>,
+        /// Maximum path length in segments [default: the scene's render.max_depth, else 8]
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+        max_depth: Option<u32>,
+        /// Random seed; equal seeds give equal images whatever the thread count [default: the scene's render.seed, else 0]
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Output EXR path; the PNG preview is written beside it with the extension .png
+        /// [default: <scene name>.exr in the current directory]
+        #[arg(long, short)]
+        out: Option<PathBuf>,
+        /// Exposure of the PNG preview in stops (the preview is 2^exposure * linear, clamped, sRGB-encoded)
+        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+        exposure: f32,
+        /// Worker threads [default: all cores]
+        #[arg(long)]
+        threads: Option<usize>,
+    },
+    /// Measure speed: closest-hit rays per second on door, path samples per second on cornell
+    Bench {
+        /// Folder holding the bundled scenes
+        #[arg(long, default_value = "scenes")]
+        scenes: PathBuf,
+        /// Seconds to spend on each measurement
+        #[arg(long, default_value_t = 3.0)]
+        seconds: f64,
+        /// Worker threads [default: all cores]
+        #[arg(long)]
+        threads: Option<usize>,
+    },
+}
+
+fn main() {
+    let cli = Cli::parse();
+    if let Err(e) = run(cli) {
+        eprintln!("error: {e:#}");
+        std::process::exit(1);
+    }
+}
+
+fn set_threads(threads: Option<usize>) -> Result<()> {
+    if let Some(n) = threads {
+        if n == 0 {
+            bail!("--threads must be at least 1");
+        }
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global()
+            .context("cannot set up the thread pool")?;
+    }
+    Ok(())
+}
+
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Render {
+            scene,
+            integrator,
+            spp,
+            time,
+            max_depth,
+            seed,
+            out,
+            exposure,
+            threads,
+        } => {
+            set_threads(threads)?;
+            if let Some(t) = time {
+                if !(t.is_finite() && t > 0.0) {
+                    bail!("--time must be a positive number of seconds, got {t}");
+                }
+            }
+            if !exposure.is_finite() {
+                bail!("--exposure must be finite");
+            }
+            let t0 = Instant::now();
+            let sc = load_scene(&scene)?;
+            let load_time = t0.elapsed();
+            let mut opts = RenderOptions::from_scene(&sc);
+            if let Some(i) = integrator {
+                opts.integrator = match i {
+                    IntegratorArg::Pt => Integrator::Pt,
+                    IntegratorArg::Lt => Integrator::Lt,
+                };
+            }
+            if let Some(s) = spp {
+                opts.spp = s;
+                opts.time = None;
+            }
+            if time.is_some() {
+                opts.time = time;
+            }
+            if let Some(d) = max_depth {
+                opts.max_depth = d;
+            }
+            if let Some(s) = seed {
+                opts.seed = s;
+            }
+            let out = out.unwrap_or_else(|| {
+                let stem = scene
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().to_string())
+                    .unwrap_or("render".into());
+                PathBuf::from(format!("{stem}.exr"))
+            });
+            render_command(&scene, &sc, opts, &out, exposure, load_time.as_secs_f64())
+        }
+        Command::Bench {
+            scenes,
+            seconds,
+            threads,
+        } => {
+            set_threads(threads)?;
+            if !(seconds.is_finite() && seconds > 0.0) {
+                bail!("--seconds must be positive");
+            }
+            bench::run(&scenes, seconds)
+        }
+    }
+}
+
+fn render_command(
+    scene_path: &Path,
+    scene: &Scene,
+    mut opts: RenderOptions,
+    out: &Path,
+    exposure: f32,
+    load_s: f64,
+) -> Result<()> {
+    if out.extension().and_then(|e| e.to_str()) != Some("exr") {
+        bail!("--out must name an .exr file, got {}", out.display());
+    }
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        if !dir.is_dir() {
+            bail!("output folder {} does not exist", dir.display());
+        }
+    }
+    let terminal = std::io::stderr().is_terminal();
+    opts.progress = terminal;
+    let cam = &scene.camera;
+    let effects: Vec<&str> = scene
+        .effects
+        .list()
+        .iter()
+        .filter(|(_, on)| *on)
+        .map(|(n, _)| *n)
+        .collect();
+    if terminal {
+        eprintln!(
+            "{}: {} triangles, {} lights, {}x{}, loaded in {:.2} s",
+            scene_path.display(),
+            scene.triangles.len(),
+            scene.lights.len(),
+            cam.width,
+            cam.height,
+            load_s
+        );
+        eprintln!("effects: {}", effects.join(", "));
+        for s in scene.effects.skipped() {
+            eprintln!("skipped: {s}");
+        }
+    }
+    if scene.stats.degenerate_skipped > 0 {
+        eprintln!(
+            "warning: skipped {} degenerate triangles",
+            scene.stats.degenerate_skipped
+        );
+    }
+    let bar = if terminal {
+        let b = ProgressBar::new(1000);
+        b.set_style(
+            ProgressStyle::with_template(
+                "{spinner} {msg} [{bar:40}] {percent}% elapsed {elapsed} eta {eta}",
+            )
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        b.set_message(opts.integrator.name().to_string());
+        Some(b)
+    } else {
+        None
+    };
+    let result = render(scene, &opts, |f| {
+        if let Some(b) = &bar {
+            b.set_position((f * 1000.0) as u64);
+        }
+    });
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let secs = result.elapsed.as_secs_f64();
+    let header = vec![
+        (
+            "footprint/version".to_string(),
+            env!("CARGO_PKG_VERSION").to_string(),
+        ),
+        (
+            "footprint/scene".to_string(),
+            scene_path.display().to_string(),
+        ),
+        (
+            "footprint/integrator".to_string(),
+            opts.integrator.name().to_string(),
+        ),
+        ("footprint/spp".to_string(), result.passes.to_string()),
+        (
+            "footprint/max_depth".to_string(),
+            opts.max_depth.to_string(),
+        ),
+        ("footprint/seed".to_string(), opts.seed.to_string()),
+        ("footprint/render_time_s".to_string(), format!("{secs:.3}")),
+        (
+            "footprint/time_budget_s".to_string(),
+            opts.time.map(|t| t.to_string()).unwrap_or("none".into()),
+        ),
+    ];
+    let name = opts.integrator.name();
+    write_exr(out, &[(name, &result.image)], &header)?;
+    let png = out.with_extension("png");
+    write_png(&png, &result.image, exposure)?;
+    println!(
+        "{}: {} {} spp {}x{} in {:.2} s ({:.2} M paths/s), max sample {:.4}, rejected {} -> {}, {}",
+        scene_path.display(),
+        name,
+        result.passes,
+        cam.width,
+        cam.height,
+        secs,
+        result.paths as f64 / secs.max(1e-9) / 1e6,
+        result.stats.max_luminance,
+        result.stats.rejected,
+        out.display(),
+        png.display()
+    );
+    Ok(())
+}

@@ -1,0 +1,95 @@
+//! Scene analysis: which light-transport effects a scene contains, so that the passes and
+//! code paths for absent effects are skipped rather than run idle.
+
+use crate::geometry::TriangleShading;
+use crate::light::Light;
+use crate::material::{Material, MaterialKind};
+
+/// The effects a scene calls for.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Effects {
+    pub diffuse: bool,
+    pub glossy: bool,
+    pub specular_reflection: bool,
+    pub refraction: bool,
+    /// Transmission that changes colour (glass with a non-grey `Tf`).
+    pub coloured_filtering: bool,
+    pub textures: bool,
+    pub area_lights: bool,
+    pub spot_lights: bool,
+    pub point_lights: bool,
+    /// A light path can reach a diffuse or glossy surface after a specular bounce
+    /// (L S+ D): needs a specular surface and a non-specular one.
+    pub caustics_possible: bool,
+}
+
+impl Effects {
+    /// Analyses the materials actually used by triangles, and the lights.
+    pub fn analyse(materials: &[Material], shading: &[TriangleShading], lights: &[Light]) -> Self {
+        let mut used = vec![false; materials.len()];
+        for s in shading {
+            used[s.material as usize] = true;
+        }
+        let mut e = Effects::default();
+        for (m, _) in materials.iter().zip(&used).filter(|(_, u)| **u) {
+            match m.kind {
+                MaterialKind::Diffuse => e.diffuse |= m.kd.max_element() > 0.0,
+                MaterialKind::Glossy => {
+                    e.diffuse |= m.kd.max_element() > 0.0;
+                    e.glossy |= m.ks.max_element() > 0.0;
+                }
+                MaterialKind::Mirror => e.specular_reflection |= m.ks.max_element() > 0.0,
+                MaterialKind::Glass => {
+                    e.refraction = true;
+                    e.specular_reflection = true;
+                    let t = m.tf;
+                    e.coloured_filtering |= t.max_element() - t.min_element() > 1e-4;
+                }
+            }
+            e.textures |= m.kd_texture.is_some();
+        }
+        for l in lights {
+            match l {
+                Light::Area { .. } => e.area_lights = true,
+                Light::Spot { .. } => e.spot_lights = true,
+                Light::Point { .. } => e.point_lights = true,
+            }
+        }
+        e.caustics_possible = (e.specular_reflection || e.refraction) && (e.diffuse || e.glossy);
+        e
+    }
+
+    /// `(name, present)` for every effect, in a fixed order.
+    pub fn list(&self) -> [(&'static str, bool); 10] {
+        [
+            ("diffuse", self.diffuse),
+            ("glossy", self.glossy),
+            ("specular reflection", self.specular_reflection),
+            ("refraction", self.refraction),
+            ("coloured filtering", self.coloured_filtering),
+            ("textures", self.textures),
+            ("area lights", self.area_lights),
+            ("spot lights", self.spot_lights),
+            ("point lights", self.point_lights),
+            ("caustic paths", self.caustics_possible),
+        ]
+    }
+
+    /// What the renderer skips because of absent effects (one line each).
+    pub fn skipped(&self) -> Vec<&'static str> {
+        let mut s = Vec::new();
+        if !self.area_lights {
+            s.push("emission lookups and MIS at surface hits (no area lights)");
+        }
+        if !self.textures {
+            s.push("texture lookups (no textures)");
+        }
+        if !self.specular_reflection && !self.refraction {
+            s.push("specular-chain bookkeeping (no mirror or glass)");
+        }
+        if !self.glossy {
+            s.push("glossy lobe evaluation (no glossy materials)");
+        }
+        s
+    }
+}

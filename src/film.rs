@@ -1,0 +1,190 @@
+//! The film: per-pixel accumulation with a box filter, and the splat films light tracing
+//! writes into. Every value is checked where it is accumulated: a NaN, infinite or negative
+//! sample never reaches a pixel; it is counted and dropped.
+
+use crate::math::{Rgb, is_valid_rgb, luminance};
+use glam::Vec2;
+
+/// A finished image: linear RGB, row-major, top row first.
+#[derive(Clone, Debug)]
+pub struct Image {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<Rgb>,
+}
+
+impl Image {
+    pub fn new(width: u32, height: u32) -> Self {
+        Image {
+            width,
+            height,
+            pixels: vec![Rgb::ZERO; width as usize * height as usize],
+        }
+    }
+
+    #[inline]
+    pub fn get(&self, x: u32, y: u32) -> Rgb {
+        self.pixels[y as usize * self.width as usize + x as usize]
+    }
+
+    /// Mean over all pixels.
+    pub fn mean(&self) -> Rgb {
+        let mut s = [0.0f64; 3];
+        for p in &self.pixels {
+            s[0] += p.x as f64;
+            s[1] += p.y as f64;
+            s[2] += p.z as f64;
+        }
+        let n = self.pixels.len().max(1) as f64;
+        Rgb::new((s[0] / n) as f32, (s[1] / n) as f32, (s[2] / n) as f32)
+    }
+
+    /// True when every pixel is finite and non-negative.
+    pub fn all_valid(&self) -> bool {
+        self.pixels.iter().all(|p| is_valid_rgb(*p))
+    }
+}
+
+/// Statistics of what was accumulated.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SampleStats {
+    /// Samples dropped because they were NaN, infinite or negative.
+    pub rejected: u64,
+    /// Largest luminance of one accepted sample.
+    pub max_luminance: f32,
+}
+
+impl SampleStats {
+    pub fn merge(&mut self, o: &SampleStats) {
+        self.rejected += o.rejected;
+        self.max_luminance = self.max_luminance.max(o.max_luminance);
+    }
+
+    /// Checks one sample; returns it when valid, counts and drops it otherwise.
+    #[inline]
+    pub fn check(&mut self, v: Rgb) -> Option<Rgb> {
+        if is_valid_rgb(v) {
+            self.max_luminance = self.max_luminance.max(luminance(v));
+            Some(v)
+        } else {
+            self.rejected += 1;
+            None
+        }
+    }
+}
+
+/// An accumulation buffer in f64 (sums), turned into an [`Image`] by dividing by a count.
+#[derive(Clone, Debug)]
+pub struct Film {
+    pub width: u32,
+    pub height: u32,
+    sum: Vec<[f64; 3]>,
+    pub stats: SampleStats,
+}
+
+impl Film {
+    pub fn new(width: u32, height: u32) -> Self {
+        Film {
+            width,
+            height,
+            sum: vec![[0.0; 3]; width as usize * height as usize],
+            stats: SampleStats::default(),
+        }
+    }
+
+    /// Adds an already-checked value to pixel `index`.
+    #[inline]
+    pub fn add_index(&mut self, index: usize, v: Rgb) {
+        let s = &mut self.sum[index];
+        s[0] += v.x as f64;
+        s[1] += v.y as f64;
+        s[2] += v.z as f64;
+    }
+
+    /// Applies a chunk's splats and merges its statistics.
+    pub fn add_splats(&mut self, splats: &SplatList) {
+        for &(i, v) in &splats.entries {
+            self.add_index(i as usize, v);
+        }
+        self.stats.merge(&splats.stats);
+    }
+
+    /// Adds one value per pixel, computed in parallel by rows: `f(x, y)` returns the value
+    /// (checked here) for pixel `(x, y)`.
+    pub fn add_per_pixel<F>(&mut self, f: F)
+    where
+        F: Fn(u32, u32) -> Rgb + Sync,
+    {
+        use rayon::prelude::*;
+        let w = self.width as usize;
+        let stats: Vec<SampleStats> = self
+            .sum
+            .par_chunks_mut(w)
+            .enumerate()
+            .map(|(y, row)| {
+                let mut st = SampleStats::default();
+                for (x, s) in row.iter_mut().enumerate() {
+                    if let Some(v) = st.check(f(x as u32, y as u32)) {
+                        s[0] += v.x as f64;
+                        s[1] += v.y as f64;
+                        s[2] += v.z as f64;
+                    }
+                }
+                st
+            })
+            .collect();
+        for st in &stats {
+            self.stats.merge(st);
+        }
+    }
+
+    /// Sums scaled by `scale`.
+    pub fn to_image(&self, scale: f64) -> Image {
+        Image {
+            width: self.width,
+            height: self.height,
+            pixels: self
+                .sum
+                .iter()
+                .map(|s| {
+                    Rgb::new(
+                        (s[0] * scale) as f32,
+                        (s[1] * scale) as f32,
+                        (s[2] * scale) as f32,
+                    )
+                })
+                .collect(),
+        }
+    }
+}
+
+/// The splats of one chunk of light paths, applied to the film in chunk order so that an
+/// image does not depend on how chunks were spread over threads.
+#[derive(Clone, Debug, Default)]
+pub struct SplatList {
+    entries: Vec<(u32, Rgb)>,
+    pub stats: SampleStats,
+}
+
+impl SplatList {
+    /// Adds `v` at raster position `raster` (box filter) on a `width x height` film;
+    /// invalid values are counted and dropped.
+    #[inline]
+    pub fn splat(&mut self, width: u32, height: u32, raster: Vec2, v: Rgb) {
+        let Some(v) = self.stats.check(v) else { return };
+        if v.max_element() <= 0.0 {
+            return;
+        }
+        let x = (raster.x as u32).min(width - 1);
+        let y = (raster.y as u32).min(height - 1);
+        self.entries.push((y * width + x, v));
+    }
+
+    pub fn len(&self) -> usize {
+        self.entries.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.entries.is_empty()
+    }
+}

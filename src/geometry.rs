@@ -1,0 +1,156 @@
+//! Rays, triangles, surface hits and robust ray offsetting.
+
+use glam::{Vec2, Vec3};
+
+/// A ray `origin + t * dir`, `t` in `(0, t_max)`. `dir` is unit length.
+#[derive(Clone, Copy, Debug)]
+pub struct Ray {
+    pub origin: Vec3,
+    pub dir: Vec3,
+    pub t_max: f32,
+}
+
+impl Ray {
+    pub fn new(origin: Vec3, dir: Vec3) -> Self {
+        Ray {
+            origin,
+            dir,
+            t_max: f32::INFINITY,
+        }
+    }
+}
+
+/// A triangle stored for intersection: a vertex and two edges.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TriangleGeom {
+    pub p0: Vec3,
+    pub e1: Vec3,
+    pub e2: Vec3,
+}
+
+impl TriangleGeom {
+    pub fn new(p0: Vec3, p1: Vec3, p2: Vec3) -> Self {
+        TriangleGeom {
+            p0,
+            e1: p1 - p0,
+            e2: p2 - p0,
+        }
+    }
+
+    /// Möller–Trumbore intersection. Returns `(t, b1, b2)` for a hit with `0 < t < t_max`.
+    #[inline(always)]
+    pub fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<(f32, f32, f32)> {
+        self.intersect_range(origin, dir, 0.0, t_max)
+    }
+
+    /// Möller–Trumbore intersection for `t_min < t < t_max`.
+    #[inline(always)]
+    pub fn intersect_range(&self, origin: Vec3, dir: Vec3, t_min: f32, t_max: f32) -> Option<(f32, f32, f32)> {
+        let pvec = dir.cross(self.e2);
+        let det = self.e1.dot(pvec);
+        if det == 0.0 || !det.is_finite() {
+            return None;
+        }
+        let inv_det = 1.0 / det;
+        let tvec = origin - self.p0;
+        let b1 = tvec.dot(pvec) * inv_det;
+        if !(0.0..=1.0).contains(&b1) {
+            return None;
+        }
+        let qvec = tvec.cross(self.e1);
+        let b2 = dir.dot(qvec) * inv_det;
+        if b2 < 0.0 || b1 + b2 > 1.0 {
+            return None;
+        }
+        let t = self.e2.dot(qvec) * inv_det;
+        if t > t_min && t < t_max {
+            Some((t, b1, b2))
+        } else {
+            None
+        }
+    }
+
+    /// Unnormalised geometric normal (`e1 x e2`, length twice the area).
+    #[inline]
+    pub fn cross(&self) -> Vec3 {
+        self.e1.cross(self.e2)
+    }
+
+    #[inline]
+    pub fn area(&self) -> f32 {
+        0.5 * self.cross().length()
+    }
+
+    #[inline]
+    pub fn point(&self, b1: f32, b2: f32) -> Vec3 {
+        self.p0 + b1 * self.e1 + b2 * self.e2
+    }
+}
+
+/// Per-triangle shading data: vertex normals and texture coordinates, material and light.
+#[derive(Clone, Copy, Debug)]
+pub struct TriangleShading {
+    /// Vertex normals, or `None` for a flat (faceted) triangle.
+    pub normals: Option<[Vec3; 3]>,
+    pub uvs: Option<[Vec2; 3]>,
+    pub material: u32,
+    /// Index into the scene's lights when the triangle emits.
+    pub light: Option<u32>,
+}
+
+/// What a closest-hit query returns: the surface point and its local geometry.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceHit {
+    pub t: f32,
+    pub p: Vec3,
+    /// Geometric normal, unit, as the triangle's winding gives it.
+    pub ng: Vec3,
+    /// Shading normal, unit, on the same side as `ng`.
+    pub ns: Vec3,
+    pub uv: Vec2,
+    pub triangle: u32,
+    pub material: u32,
+    pub light: Option<u32>,
+}
+
+/// Offsets a ray origin off a surface along the geometric normal `n` (pointing to the side
+/// the ray leaves from), by an amount that grows with the magnitude of `p` so that the new
+/// ray never re-hits the surface it starts on (Wächter & Binder, "A Fast and Robust Method
+/// for Avoiding Self-Intersection", Ray Tracing Gems, ch. 6).
+#[inline]
+pub fn offset_ray_origin(p: Vec3, n: Vec3) -> Vec3 {
+    const ORIGIN: f32 = 1.0 / 32.0;
+    const FLOAT_SCALE: f32 = 1.0 / 65536.0;
+    const INT_SCALE: f32 = 256.0;
+    let of_i = (n * INT_SCALE).as_ivec3();
+    let step = |x: f32, o: i32| -> f32 {
+        let bits = x.to_bits() as i32;
+        let moved = if x < 0.0 { bits - o } else { bits + o };
+        f32::from_bits(moved as u32)
+    };
+    let p_i = Vec3::new(step(p.x, of_i.x), step(p.y, of_i.y), step(p.z, of_i.z));
+    Vec3::new(
+        if p.x.abs() < ORIGIN {
+            p.x + FLOAT_SCALE * n.x
+        } else {
+            p_i.x
+        },
+        if p.y.abs() < ORIGIN {
+            p.y + FLOAT_SCALE * n.y
+        } else {
+            p_i.y
+        },
+        if p.z.abs() < ORIGIN {
+            p.z + FLOAT_SCALE * n.z
+        } else {
+            p_i.z
+        },
+    )
+}
+
+/// Origin for a ray leaving surface point `p` (geometric normal `ng`) in direction `dir`.
+#[inline]
+pub fn spawn_origin(p: Vec3, ng: Vec3, dir: Vec3) -> Vec3 {
+    let n = if dir.dot(ng) >= 0.0 { ng } else { -ng };
+    offset_ray_origin(p, n)
+}

@@ -1,0 +1,151 @@
+//! Writing images: OpenEXR (linear float RGB, one layer per estimate, settings in the
+//! header) and a PNG preview. Both are written to a temporary file in the target folder and
+//! renamed over the target, so a failed or interrupted run never truncates a good image.
+//!
+//! PNG tone map: `srgb(clamp(2^exposure · rgb, 0, 1))`, with the sRGB transfer function
+//! (IEC 61966-2-1); exposure 0 by default. No other curve is applied.
+
+use crate::error::{Error, Result};
+use crate::film::Image;
+use std::path::{Path, PathBuf};
+
+fn tmp_path(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().to_string())
+        .unwrap_or_default();
+    path.with_file_name(format!(".{name}.tmp-{}", std::process::id()))
+}
+
+/// Runs `write` against a temporary file, then renames it over `path`.
+fn atomic_write(
+    path: &Path,
+    write: impl FnOnce(&Path) -> std::result::Result<(), String>,
+) -> Result<()> {
+    let tmp = tmp_path(path);
+    if let Err(message) = write(&tmp) {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(Error::Write {
+            path: path.to_path_buf(),
+            message,
+        });
+    }
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        Error::Write {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        }
+    })
+}
+
+/// Writes an EXR with one RGB layer per `(name, image)` and text attributes in the header.
+pub fn write_exr(
+    path: &Path,
+    layers: &[(&str, &Image)],
+    header: &[(String, String)],
+) -> Result<()> {
+    use exr::meta::attribute::{AttributeValue, Text};
+    use exr::prelude::*;
+    let Some((_, first)) = layers.first() else {
+        return Err(crate::error::Error::Write {
+            path: path.to_path_buf(),
+            message: "no layers to write".into(),
+        });
+    };
+    let size = Vec2(first.width as usize, first.height as usize);
+    fn layer<'a>(
+        name: &str,
+        img: &'a crate::film::Image,
+        size: Vec2<usize>,
+    ) -> Layer<
+        SpecificChannels<
+            impl Sync + Fn(Vec2<usize>) -> (f32, f32, f32) + 'a,
+            (ChannelDescription, ChannelDescription, ChannelDescription),
+        >,
+    > {
+        let w = img.width as usize;
+        Layer::new(
+            size,
+            LayerAttributes::named(name),
+            Encoding::SMALL_LOSSLESS,
+            SpecificChannels::rgb(move |p: Vec2<usize>| {
+                let c = img.pixels[p.y() * w + p.x()];
+                (c.x, c.y, c.z)
+            }),
+        )
+    }
+    let all: Vec<_> = layers.iter().map(|(n, img)| layer(n, img, size)).collect();
+    let mut attrs = ImageAttributes::new(IntegerBounds::from_dimensions(size));
+    for (k, v) in header {
+        attrs.other.insert(
+            Text::from(k.as_str()),
+            AttributeValue::Text(Text::from(v.as_str())),
+        );
+    }
+    let image = exr::image::Image::from_layers(attrs, all);
+    atomic_write(path, |tmp| {
+        image.write().to_file(tmp).map_err(|e| e.to_string())
+    })
+}
+
+/// sRGB transfer function from linear.
+#[inline]
+pub fn linear_to_srgb(v: f32) -> f32 {
+    if v <= 0.0031308 {
+        12.92 * v
+    } else {
+        1.055 * v.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// Writes the tone-mapped PNG preview (see the module doc).
+pub fn write_png(path: &Path, img: &Image, exposure: f32) -> Result<()> {
+    let scale = exposure.exp2();
+    let mut buf = Vec::with_capacity(img.pixels.len() * 3);
+    for p in &img.pixels {
+        for c in [p.x, p.y, p.z] {
+            let v = if c.is_finite() {
+                (c * scale).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            buf.push((linear_to_srgb(v) * 255.0 + 0.5) as u8);
+        }
+    }
+    atomic_write(path, |tmp| {
+        image::save_buffer_with_format(
+            tmp,
+            &buf,
+            img.width,
+            img.height,
+            image::ExtendedColorType::Rgb8,
+            image::ImageFormat::Png,
+        )
+        .map_err(|e| e.to_string())
+    })
+}
+
+/// Reads the first RGB(A) layer of an EXR file.
+pub fn read_exr(path: &Path) -> Result<Image> {
+    use exr::prelude::*;
+    let img = read_first_rgba_layer_from_file(
+        path,
+        |res, _| {
+            let w = res.width();
+            let h = res.height();
+            (w, vec![glam::Vec3::ZERO; w * h])
+        },
+        |(w, px): &mut (usize, Vec<glam::Vec3>), pos, (r, g, b, _a): (f32, f32, f32, f32)| {
+            px[pos.y() * *w + pos.x()] = glam::Vec3::new(r, g, b);
+        },
+    )
+    .map_err(|e| crate::error::Error::Other(format!("{}: {e}", path.display())))?;
+    let size = img.layer_data.size;
+    let (_, pixels) = img.layer_data.channel_data.pixels;
+    Ok(crate::film::Image {
+        width: size.width() as u32,
+        height: size.height() as u32,
+        pixels,
+    })
+}

@@ -1,0 +1,309 @@
+//! Lights: emissive triangles (area lights), spot lights with inner/outer cone angles, point
+//! lights. Each light offers what the two kinds of paths need:
+//!
+//! * `sample_li`: a point on the light seen from a shading point (next-event estimation),
+//!   with its density per steradian at the shading point;
+//! * `sample_le`: an emitted ray (light tracing and the photon pass), with its positional
+//!   density per area and directional density per steradian;
+//! * `power`: the emitted flux, by which lights are chosen.
+
+use crate::geometry::TriangleGeom;
+use crate::math::{Frame, PI, Rgb, luminance};
+use crate::sampling::{
+    cosine_hemisphere_pdf, sample_cosine_hemisphere, sample_uniform_cone, sample_uniform_sphere,
+    sample_uniform_triangle, uniform_cone_pdf, uniform_sphere_pdf,
+};
+use glam::{Vec2, Vec3};
+
+#[derive(Clone, Debug)]
+pub enum Light {
+    /// One emissive triangle, emitting radiance `le` from the side its winding normal faces.
+    Area {
+        triangle: u32,
+        geom: TriangleGeom,
+        /// Unit normal of the emitting side.
+        n: Vec3,
+        area: f32,
+        le: Rgb,
+    },
+    /// Isotropic point light of intensity `intensity` (W/sr).
+    Point { position: Vec3, intensity: Rgb },
+    /// Spot light: intensity `intensity` on its axis, full inside `cos_inner`, falling off
+    /// smoothly to zero at `cos_outer` (smoothstep in cos θ, as pbrt-v4's `SpotLight`).
+    Spot {
+        position: Vec3,
+        frame: Frame,
+        intensity: Rgb,
+        cos_inner: f32,
+        cos_outer: f32,
+    },
+}
+
+/// A point on a light sampled from a shading point.
+#[derive(Clone, Copy, Debug)]
+pub struct LightSample {
+    /// Point on the light.
+    pub p: Vec3,
+    /// Unit direction from the shading point to the light.
+    pub wi: Vec3,
+    pub distance: f32,
+    /// Radiance arriving along `-wi` (area) or intensity / d² (delta lights).
+    pub li: Rgb,
+    /// Density per steradian at the shading point (1 for delta lights), excluding the
+    /// choice of the light.
+    pub pdf_w: f32,
+    /// Normal of the light surface (area lights), for offsetting the shadow ray's end.
+    pub n: Option<Vec3>,
+    pub delta: bool,
+}
+
+/// An emitted ray.
+#[derive(Clone, Copy, Debug)]
+pub struct LightEmission {
+    pub p: Vec3,
+    pub n: Option<Vec3>,
+    pub dir: Vec3,
+    /// Emitted radiance (area) or intensity (delta) along `dir`.
+    pub le: Rgb,
+    /// Density of `p` per unit area (1 for delta positions).
+    pub pdf_pos: f32,
+    /// Density of `dir` per steradian.
+    pub pdf_dir: f32,
+    /// Cosine at the emitting surface (1 for point and spot lights).
+    pub cos_light: f32,
+}
+
+#[inline]
+fn smoothstep(a: f32, b: f32, x: f32) -> f32 {
+    if a == b {
+        return if x < a { 0.0 } else { 1.0 };
+    }
+    let t = ((x - a) / (b - a)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+impl Light {
+    pub fn is_delta(&self) -> bool {
+        !matches!(self, Light::Area { .. })
+    }
+
+    /// Emitted flux (RGB, W).
+    pub fn power_rgb(&self) -> Rgb {
+        match self {
+            Light::Area { area, le, .. } => *le * (PI * *area),
+            Light::Point { intensity, .. } => *intensity * (4.0 * PI),
+            Light::Spot {
+                intensity,
+                cos_inner,
+                cos_outer,
+                ..
+            } => {
+                // ∫ smoothstep over the cone: full cone to cos_inner, and half of the ring
+                // between, as pbrt-v4 approximates it.
+                *intensity * (2.0 * PI * ((1.0 - cos_inner) + 0.5 * (cos_inner - cos_outer)))
+            }
+        }
+    }
+
+    /// Luminance of the emitted flux: what lights are chosen by.
+    pub fn power(&self) -> f32 {
+        luminance(self.power_rgb())
+    }
+
+    /// Spot falloff for a direction with cosine `cos_t` to the axis.
+    #[inline]
+    fn spot_falloff(cos_t: f32, cos_inner: f32, cos_outer: f32) -> f32 {
+        smoothstep(cos_outer, cos_inner, cos_t)
+    }
+
+    /// Radiance (area) or intensity (delta) leaving the light at `p` toward unit `dir`.
+    #[inline]
+    pub fn emitted(&self, dir: Vec3) -> Rgb {
+        match self {
+            Light::Area { n, le, .. } => {
+                if dir.dot(*n) > 0.0 {
+                    *le
+                } else {
+                    Rgb::ZERO
+                }
+            }
+            Light::Point { intensity, .. } => *intensity,
+            Light::Spot {
+                frame,
+                intensity,
+                cos_inner,
+                cos_outer,
+                ..
+            } => *intensity * Self::spot_falloff(dir.dot(frame.z), *cos_inner, *cos_outer),
+        }
+    }
+
+    /// Samples a point on the light as seen from `p_ref`.
+    pub fn sample_li(&self, p_ref: Vec3, u: Vec2) -> Option<LightSample> {
+        match self {
+            Light::Area {
+                geom, n, area, le, ..
+            } => {
+                let (b1, b2) = sample_uniform_triangle(u);
+                let p = geom.point(b1, b2);
+                let d = p - p_ref;
+                let dist2 = d.length_squared();
+                if dist2 <= 0.0 {
+                    return None;
+                }
+                let distance = dist2.sqrt();
+                let wi = d / distance;
+                let cos_l = -wi.dot(*n);
+                if cos_l <= 0.0 {
+                    return None;
+                }
+                let pdf_w = dist2 / (cos_l * *area);
+                if !pdf_w.is_finite() {
+                    return None;
+                }
+                Some(LightSample {
+                    p,
+                    wi,
+                    distance,
+                    li: *le,
+                    pdf_w,
+                    n: Some(*n),
+                    delta: false,
+                })
+            }
+            Light::Point {
+                position,
+                intensity,
+            } => {
+                let d = *position - p_ref;
+                let dist2 = d.length_squared();
+                if dist2 <= 0.0 {
+                    return None;
+                }
+                let distance = dist2.sqrt();
+                Some(LightSample {
+                    p: *position,
+                    wi: d / distance,
+                    distance,
+                    li: *intensity / dist2,
+                    pdf_w: 1.0,
+                    n: None,
+                    delta: true,
+                })
+            }
+            Light::Spot { position, .. } => {
+                let d = *position - p_ref;
+                let dist2 = d.length_squared();
+                if dist2 <= 0.0 {
+                    return None;
+                }
+                let distance = dist2.sqrt();
+                let wi = d / distance;
+                let i = self.emitted(-wi);
+                if i.max_element() <= 0.0 {
+                    return None;
+                }
+                Some(LightSample {
+                    p: *position,
+                    wi,
+                    distance,
+                    li: i / dist2,
+                    pdf_w: 1.0,
+                    n: None,
+                    delta: true,
+                })
+            }
+        }
+    }
+
+    /// Density per steradian at `p_ref` with which [`Light::sample_li`] returns the point
+    /// `p_light` (area lights only; zero for delta lights).
+    pub fn pdf_li(&self, p_ref: Vec3, p_light: Vec3) -> f32 {
+        match self {
+            Light::Area { n, area, .. } => {
+                let d = p_light - p_ref;
+                let dist2 = d.length_squared();
+                let cos_l = (-d).dot(*n) / dist2.sqrt();
+                if cos_l <= 0.0 || dist2 <= 0.0 {
+                    return 0.0;
+                }
+                dist2 / (cos_l * *area)
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// Samples an emitted ray: area lights uniformly in area and cosine-weighted in
+    /// direction; point lights uniformly on the sphere; spot lights uniformly in the outer cone.
+    pub fn sample_le(&self, u_pos: Vec2, u_dir: Vec2) -> Option<LightEmission> {
+        match self {
+            Light::Area {
+                geom, n, area, le, ..
+            } => {
+                let (b1, b2) = sample_uniform_triangle(u_pos);
+                let p = geom.point(b1, b2);
+                let local = sample_cosine_hemisphere(u_dir);
+                if local.z <= 0.0 {
+                    return None;
+                }
+                let dir = Frame::from_z(*n).to_world(local).normalize();
+                Some(LightEmission {
+                    p,
+                    n: Some(*n),
+                    dir,
+                    le: *le,
+                    pdf_pos: 1.0 / *area,
+                    pdf_dir: cosine_hemisphere_pdf(local.z),
+                    cos_light: local.z,
+                })
+            }
+            Light::Point {
+                position,
+                intensity,
+            } => Some(LightEmission {
+                p: *position,
+                n: None,
+                dir: sample_uniform_sphere(u_dir),
+                le: *intensity,
+                pdf_pos: 1.0,
+                pdf_dir: uniform_sphere_pdf(),
+                cos_light: 1.0,
+            }),
+            Light::Spot {
+                position,
+                frame,
+                cos_outer,
+                ..
+            } => {
+                let dir = frame
+                    .to_world(sample_uniform_cone(u_dir, *cos_outer))
+                    .normalize();
+                let le = self.emitted(dir);
+                if le.max_element() <= 0.0 {
+                    return None;
+                }
+                Some(LightEmission {
+                    p: *position,
+                    n: None,
+                    dir,
+                    le,
+                    pdf_pos: 1.0,
+                    pdf_dir: uniform_cone_pdf(*cos_outer),
+                    cos_light: 1.0,
+                })
+            }
+        }
+    }
+
+    /// Position and, for area lights, a sampled point's positional density: used when a
+    /// light vertex is connected straight to the camera.
+    pub fn sample_position(&self, u_pos: Vec2) -> (Vec3, Option<Vec3>, f32) {
+        match self {
+            Light::Area { geom, n, area, .. } => {
+                let (b1, b2) = sample_uniform_triangle(u_pos);
+                (geom.point(b1, b2), Some(*n), 1.0 / *area)
+            }
+            Light::Point { position, .. } | Light::Spot { position, .. } => (*position, None, 1.0),
+        }
+    }
+}

@@ -1,0 +1,158 @@
+//! Warps from the unit square and discrete distributions. Each warp is a pair (or triple):
+//! `sample_*` maps uniform numbers to the domain, `*_pdf` gives the density of that mapping
+//! in the measure named by the function (per steradian for directions).
+
+use crate::math::{INV_4PI, INV_PI, PI, safe_sqrt};
+use glam::{Vec2, Vec3};
+
+/// Concentric mapping of the unit square to the unit disc (Shirley & Chiu 1997).
+#[inline]
+pub fn sample_concentric_disk(u: Vec2) -> Vec2 {
+    let o = 2.0 * u - Vec2::ONE;
+    if o.x == 0.0 && o.y == 0.0 {
+        return Vec2::ZERO;
+    }
+    let (r, theta) = if o.x.abs() > o.y.abs() {
+        (o.x, (PI / 4.0) * (o.y / o.x))
+    } else {
+        (o.y, PI / 2.0 - (PI / 4.0) * (o.x / o.y))
+    };
+    r * Vec2::new(theta.cos(), theta.sin())
+}
+
+/// Cosine-weighted direction on the hemisphere around +z.
+#[inline]
+pub fn sample_cosine_hemisphere(u: Vec2) -> Vec3 {
+    let d = sample_concentric_disk(u);
+    let z = safe_sqrt(1.0 - d.x * d.x - d.y * d.y);
+    Vec3::new(d.x, d.y, z)
+}
+
+/// Density per steradian of [`sample_cosine_hemisphere`] at a direction with cosine `cos_theta`.
+#[inline]
+pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
+    cos_theta.max(0.0) * INV_PI
+}
+
+/// Uniform direction on the unit sphere.
+#[inline]
+pub fn sample_uniform_sphere(u: Vec2) -> Vec3 {
+    let z = 1.0 - 2.0 * u.x;
+    let r = safe_sqrt(1.0 - z * z);
+    let phi = 2.0 * PI * u.y;
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+/// Density per steradian of [`sample_uniform_sphere`].
+#[inline]
+pub fn uniform_sphere_pdf() -> f32 {
+    INV_4PI
+}
+
+/// Uniform direction in the cone around +z with half-angle cosine `cos_max`.
+#[inline]
+pub fn sample_uniform_cone(u: Vec2, cos_max: f32) -> Vec3 {
+    let cos_t = 1.0 - u.x * (1.0 - cos_max);
+    let sin_t = safe_sqrt(1.0 - cos_t * cos_t);
+    let phi = 2.0 * PI * u.y;
+    Vec3::new(sin_t * phi.cos(), sin_t * phi.sin(), cos_t)
+}
+
+/// Density per steradian of [`sample_uniform_cone`].
+#[inline]
+pub fn uniform_cone_pdf(cos_max: f32) -> f32 {
+    1.0 / (2.0 * PI * (1.0 - cos_max))
+}
+
+/// Uniform barycentric coordinates `(b1, b2)` on a triangle (Heitz 2019, low distortion).
+#[inline]
+pub fn sample_uniform_triangle(u: Vec2) -> (f32, f32) {
+    let (b0, b1);
+    if u.x < u.y {
+        b0 = u.x / 2.0;
+        b1 = u.y - b0;
+    } else {
+        b1 = u.y / 2.0;
+        b0 = u.x - b1;
+    }
+    (b1, 1.0 - b0 - b1)
+}
+
+/// A discrete distribution over `n` items proportional to non-negative weights.
+#[derive(Clone, Debug, Default)]
+pub struct Distribution1D {
+    /// Cumulative distribution, `cdf[0] = 0`, `cdf[n] = 1`.
+    cdf: Vec<f32>,
+    pmf: Vec<f32>,
+    total: f64,
+}
+
+impl Distribution1D {
+    /// Builds the distribution; negative or non-finite weights count as zero. Returns `None`
+    /// when every weight is zero.
+    pub fn new(weights: &[f32]) -> Option<Self> {
+        let clean: Vec<f64> = weights
+            .iter()
+            .map(|&w| {
+                if w.is_finite() && w > 0.0 {
+                    w as f64
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let total: f64 = clean.iter().sum();
+        if total <= 0.0 || weights.is_empty() {
+            return None;
+        }
+        let mut cdf = Vec::with_capacity(clean.len() + 1);
+        cdf.push(0.0f32);
+        let mut acc = 0.0f64;
+        for &w in &clean {
+            acc += w;
+            cdf.push((acc / total) as f32);
+        }
+        *cdf.last_mut().unwrap() = 1.0;
+        let pmf = clean.iter().map(|&w| (w / total) as f32).collect();
+        Some(Distribution1D { cdf, pmf, total })
+    }
+
+    pub fn len(&self) -> usize {
+        self.pmf.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.pmf.is_empty()
+    }
+
+    /// Sum of the (cleaned) weights.
+    pub fn total(&self) -> f64 {
+        self.total
+    }
+
+    /// Chooses an item; returns it with its probability. Items of zero probability are never
+    /// returned.
+    #[inline]
+    pub fn sample(&self, u: f32) -> (usize, f32) {
+        // First index whose cdf exceeds u: cdf[i] <= u < cdf[i+1].
+        let n = self.pmf.len();
+        let mut i = self
+            .cdf
+            .partition_point(|&c| c <= u)
+            .saturating_sub(1)
+            .min(n - 1);
+        // Skip zero-probability items that rounding could select.
+        while self.pmf[i] == 0.0 && i + 1 < n {
+            i += 1;
+        }
+        while self.pmf[i] == 0.0 && i > 0 {
+            i -= 1;
+        }
+        (i, self.pmf[i])
+    }
+
+    #[inline]
+    pub fn pmf(&self, i: usize) -> f32 {
+        self.pmf[i]
+    }
+}

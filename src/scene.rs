@@ -1,0 +1,217 @@
+//! The scene: triangles with their shading data, materials, textures, lights, the camera,
+//! the BVH, the render settings from the scene file, and the effect analysis.
+
+use crate::bsdf::{Bsdf, Lobes};
+use crate::bvh::Bvh;
+use crate::camera::Camera;
+use crate::effects::Effects;
+use crate::geometry::{SurfaceHit, TriangleGeom, TriangleShading, offset_ray_origin, spawn_origin};
+use crate::light::Light;
+use crate::material::Material;
+use crate::sampling::Distribution1D;
+use crate::texture::Texture;
+use glam::{Vec2, Vec3};
+
+/// Integrators the scene file and the command line accept.
+pub const INTEGRATORS: &[&str] = &["pt", "lt"];
+
+/// Render settings read from the scene file (the command line may override them).
+#[derive(Clone, Debug)]
+pub struct RenderSettings {
+    pub integrator: String,
+    /// Samples per pixel (path tracing) or light paths per pixel (light tracing).
+    pub spp: u32,
+    /// Time budget in seconds; when set it replaces `spp`.
+    pub time: Option<f64>,
+    /// Maximum number of path segments.
+    pub max_depth: u32,
+    pub seed: u64,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        RenderSettings {
+            integrator: "pt".into(),
+            spp: 16,
+            time: None,
+            max_depth: 8,
+            seed: 0,
+        }
+    }
+}
+
+/// Counts reported after loading.
+#[derive(Clone, Debug, Default)]
+pub struct LoadStats {
+    pub triangles: usize,
+    pub degenerate_skipped: usize,
+    pub meshes: usize,
+}
+
+pub struct Scene {
+    pub camera: Camera,
+    pub triangles: Vec<TriangleGeom>,
+    pub shading: Vec<TriangleShading>,
+    pub materials: Vec<Material>,
+    pub textures: Vec<Texture>,
+    pub lights: Vec<Light>,
+    /// Chooses lights in proportion to power.
+    pub light_distribution: Distribution1D,
+    pub bvh: Bvh,
+    pub settings: RenderSettings,
+    pub effects: Effects,
+    pub stats: LoadStats,
+    /// Scene bounding box.
+    pub bounds: (Vec3, Vec3),
+}
+
+impl Scene {
+    /// Assembles a scene from its parts, builds the BVH and the light distribution and runs
+    /// the effect analysis. Errors when there is no geometry or no light with power.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        camera: Camera,
+        triangles: Vec<TriangleGeom>,
+        shading: Vec<TriangleShading>,
+        materials: Vec<Material>,
+        textures: Vec<Texture>,
+        mut lights: Vec<Light>,
+        settings: RenderSettings,
+        stats: LoadStats,
+    ) -> Result<Self, String> {
+        if triangles.is_empty() {
+            return Err("the scene has no geometry (no valid triangles)".into());
+        }
+        assert_eq!(triangles.len(), shading.len());
+        let mut shading = shading;
+        // Area lights from emissive materials, one per triangle.
+        for (i, (t, s)) in triangles.iter().zip(shading.iter_mut()).enumerate() {
+            let m = &materials[s.material as usize];
+            if m.emits() {
+                let c = t.cross();
+                let area = 0.5 * c.length();
+                if area > 0.0 {
+                    s.light = Some(lights.len() as u32);
+                    lights.push(Light::Area {
+                        triangle: i as u32,
+                        geom: *t,
+                        n: c.normalize(),
+                        area,
+                        le: m.ke,
+                    });
+                }
+            }
+        }
+        let powers: Vec<f32> = lights.iter().map(|l| l.power()).collect();
+        let light_distribution = Distribution1D::new(&powers)
+            .ok_or("the scene has no lights (no emissive material with Ke > 0 and no [[light]] with intensity > 0)")?;
+        let mut lo = Vec3::splat(f32::INFINITY);
+        let mut hi = Vec3::splat(f32::NEG_INFINITY);
+        for t in &triangles {
+            for p in [t.p0, t.p0 + t.e1, t.p0 + t.e2] {
+                lo = lo.min(p);
+                hi = hi.max(p);
+            }
+        }
+        let bvh = Bvh::build(&triangles);
+        let effects = Effects::analyse(&materials, &shading, &lights);
+        Ok(Scene {
+            camera,
+            triangles,
+            shading,
+            materials,
+            textures,
+            lights,
+            light_distribution,
+            bvh,
+            settings,
+            effects,
+            stats,
+            bounds: (lo, hi),
+        })
+    }
+
+    /// Closest surface hit along a ray.
+    #[inline]
+    pub fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<SurfaceHit> {
+        let h = self.bvh.intersect(origin, dir, t_max)?;
+        Some(self.surface_hit(h.triangle, h.t, h.b1, h.b2))
+    }
+
+    /// The full surface description of a hit on triangle `tri` at barycentrics `(b1, b2)`.
+    #[inline]
+    pub fn surface_hit(&self, tri: u32, t: f32, b1: f32, b2: f32) -> SurfaceHit {
+        let g = &self.triangles[tri as usize];
+        let s = &self.shading[tri as usize];
+        let ng = g.cross().normalize();
+        let b0 = 1.0 - b1 - b2;
+        let ns = match s.normals {
+            Some(n) => {
+                let n = (b0 * n[0] + b1 * n[1] + b2 * n[2]).normalize_or_zero();
+                if n == Vec3::ZERO || !n.is_finite() {
+                    ng
+                } else if n.dot(ng) < 0.0 {
+                    -n
+                } else {
+                    n
+                }
+            }
+            None => ng,
+        };
+        let uv = match s.uvs {
+            Some(uv) => b0 * uv[0] + b1 * uv[1] + b2 * uv[2],
+            None => Vec2::new(b1, b2),
+        };
+        SurfaceHit {
+            t,
+            p: g.point(b1, b2),
+            ng,
+            ns,
+            uv,
+            triangle: tri,
+            material: s.material,
+            light: s.light,
+        }
+    }
+
+    /// The BSDF at a hit (textures looked up only when the material has one).
+    #[inline]
+    pub fn bsdf(&self, hit: &SurfaceHit) -> Bsdf {
+        let m = &self.materials[hit.material as usize];
+        let kd = match m.kd_texture {
+            Some(t) => m.kd * self.textures[t as usize].lookup(hit.uv),
+            None => m.kd,
+        };
+        Bsdf::new(Lobes::new(m, kd), hit.ns, hit.ng)
+    }
+
+    /// Shadow ray from surface point `p` (normal `ng`) to `target`; `target_n` is the normal
+    /// at the target when it lies on a surface (area light), `None` for a point.
+    #[inline]
+    pub fn visible(&self, p: Vec3, ng: Vec3, target: Vec3, target_n: Option<Vec3>) -> bool {
+        let d = target - p;
+        let o = spawn_origin(p, ng, d);
+        let end = match target_n {
+            Some(n) => offset_ray_origin(target, if n.dot(-d) >= 0.0 { n } else { -n }),
+            None => target,
+        };
+        let v = end - o;
+        let dist = v.length();
+        if dist <= 0.0 || !dist.is_finite() {
+            return false;
+        }
+        self.bvh.unoccluded(o, v / dist, dist * (1.0 - 1e-5))
+    }
+
+    /// Shadow ray from surface point `p` (normal `ng`) to the camera position.
+    #[inline]
+    pub fn visible_from_camera(&self, p: Vec3, ng: Vec3) -> bool {
+        self.visible(p, ng, self.camera.position, None)
+    }
+
+    /// Probability of choosing light `i`.
+    #[inline]
+    pub fn light_pmf(&self, i: u32) -> f32 {
+        self.light_distribution.pmf(i as usize)
+    }
+}

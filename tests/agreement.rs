@@ -1,0 +1,79 @@
+//! Path tracing and light tracing estimate the same image: on the Cornell box at 64x64, the
+//! mean of every 8x8-pixel region agrees between the two integrators within statistical
+//! bounds.
+//!
+//! Bound: each integrator renders `R` independent images (different seeds); for every region
+//! and channel the difference of the two means is compared with its standard error
+//! `sqrt(s_pt²/R + s_lt²/R)` estimated from the spread of the replicates. The critical value
+//! is Student's t with `R - 1` degrees of freedom (conservative for Welch's test) at
+//! significance 0.01, Šidák-corrected over all region x channel tests.
+
+mod common;
+
+use common::{scene_path, sidak, t_critical};
+use footprint::loader::load_scene;
+use footprint_integrators::{Integrator, RenderOptions, render};
+
+fn region_means(img: &footprint::film::Image, block: u32) -> Vec<[f64; 3]> {
+    let (bw, bh) = (img.width / block, img.height / block);
+    let mut out = vec![[0.0f64; 3]; (bw * bh) as usize];
+    for y in 0..bh * block {
+        for x in 0..bw * block {
+            let p = img.get(x, y);
+            let r = &mut out[((y / block) * bw + x / block) as usize];
+            for c in 0..3 {
+                r[c] += p[c] as f64 / (block * block) as f64;
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn path_tracer_and_light_tracer_agree_on_cornell() {
+    let mut scene = load_scene(&scene_path("cornell")).expect("cornell loads");
+    scene.camera = scene.camera.with_resolution(64, 64).unwrap();
+    let renders = 40;
+    let block = 8;
+    let regions = (64 / block) * (64 / block);
+    let crit = t_critical(sidak(0.01, regions as usize * 3), (renders - 1) as f64);
+    let replicate = |integrator: Integrator| -> Vec<Vec<[f64; 3]>> {
+        (0..renders)
+            .map(|r| {
+                let opts = RenderOptions {
+                    integrator,
+                    spp: 8,
+                    time: None,
+                    max_depth: 6,
+                    seed: 7 + r as u64,
+                    progress: false,
+                };
+                let out = render(&scene, &opts, |_| {});
+                assert!(out.image.all_valid());
+                region_means(&out.image, block)
+            })
+            .collect()
+    };
+    let pt = replicate(Integrator::Pt);
+    let lt = replicate(Integrator::Lt);
+    let stats = |reps: &Vec<Vec<[f64; 3]>>, i: usize, c: usize| {
+        let xs: Vec<f64> = reps.iter().map(|r| r[i][c]).collect();
+        common::mean_stderr(&xs)
+    };
+    let mut worst = 0.0f64;
+    let mut failures = Vec::new();
+    for i in 0..regions as usize {
+        for c in 0..3 {
+            let (mp, sp) = stats(&pt, i, c);
+            let (ml, sl) = stats(&lt, i, c);
+            let se = (sp * sp + sl * sl).sqrt();
+            let z = (mp - ml).abs() / se.max(1e-12);
+            worst = worst.max(z);
+            if z > crit {
+                failures.push(format!("region {i} channel {c}: pt {mp:.4} ± {sp:.4}, lt {ml:.4} ± {sl:.4}, |t| = {z:.2}"));
+            }
+        }
+    }
+    eprintln!("largest |t| = {worst:.2}, critical {crit:.2}");
+    assert!(failures.is_empty(), "regions disagree (critical |t| {crit:.2}):\n{}", failures.join("\n"));
+}

@@ -1,0 +1,79 @@
+//! The BVH's closest hit equals a brute-force loop over all triangles, on random rays through
+//! every bundled scene (rays from random points in the scene's bounds, in uniform
+//! directions), and its shadow-ray query agrees with the closest hit.
+
+mod common;
+
+use common::scene_path;
+use footprint::loader::load_scene;
+use footprint::rng::Rng;
+use footprint::sampling::sample_uniform_sphere;
+
+#[test]
+fn bvh_matches_brute_force_on_every_scene() {
+    for name in ["cornell", "door", "desk", "furnace"] {
+        let scene = load_scene(&scene_path(name)).unwrap();
+        let (lo, hi) = scene.bounds;
+        let mut rng = Rng::new(21, 0, 0);
+        let mut hits = 0;
+        for _ in 0..20_000 {
+            let u = glam::Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
+            let o = lo + (hi - lo) * u;
+            let d = sample_uniform_sphere(rng.uniform2());
+            let mut best: Option<(f32, usize)> = None;
+            for (i, t) in scene.triangles.iter().enumerate() {
+                if let Some((t, _, _)) = t.intersect(o, d, best.map(|b| b.0).unwrap_or(f32::INFINITY)) {
+                    best = Some((t, i));
+                }
+            }
+            let got = scene.bvh.intersect(o, d, f32::INFINITY);
+            // An origin within rounding distance of a surface makes "is it in front?"
+            // ambiguous; the renderer never starts rays there (origins are offset).
+            let eps = 1e-5;
+            if scene.triangles.iter().any(|t| t.intersect_range(o - eps * d, d, 0.0, 2.0 * eps).is_some()) {
+                continue;
+            }
+            match (best, got) {
+                (None, None) => {}
+                (Some((t, i)), Some(h)) => {
+                    hits += 1;
+                    // Möller–Trumbore's t carries rounding error proportional to the
+                    // coordinates' magnitude; the BVH also starts its ray a little behind `o`.
+                    let tol = 5e-5 * (1.0 + o.abs().max_element() + t);
+                    assert!((t - h.t).abs() <= tol, "{name}: t {t} vs {}", h.t);
+                    if h.triangle as usize != i {
+                        // Only a tie (a shared edge or vertex) may pick another triangle.
+                        let other = scene.triangles[h.triangle as usize].intersect(o, d, f32::INFINITY);
+                        assert!(other.is_some_and(|(t2, _, _)| (t2 - t).abs() <= tol), "{name}: different triangle");
+                    }
+                    // The barycentrics reported belong to the hit.
+                    let p = scene.triangles[h.triangle as usize].point(h.b1, h.b2);
+                    assert!((p - (o + h.t * d)).length() <= 1e-3 * (1.0 + o.length()), "{name}: barycentrics");
+                    assert!(!scene.bvh.unoccluded(o, d, h.t + tol), "{name}: shadow ray missed a hit: o {o:?} d {d:?} t {} tri {}", h.t, h.triangle);
+                    assert!(h.t <= tol || scene.bvh.unoccluded(o, d, h.t - tol), "{name}: shadow ray hit before the closest hit");
+                }
+                (b, g) => panic!("{name}: brute force {b:?} vs bvh {g:?}"),
+            }
+        }
+        assert!(hits > 1000, "{name}: too few hits ({hits}) to mean anything");
+    }
+}
+
+/// Surfaces very close to a ray's origin are found (obvhs' CWBVH node test alone culls boxes
+/// left before t = 1e-4, which would let rays in corners pass through walls).
+#[test]
+fn surfaces_close_to_the_origin_are_hit() {
+    let scene = load_scene(&scene_path("cornell")).unwrap();
+    let mut rng = Rng::new(22, 0, 0);
+    for gap in [1e-3f32, 1e-4, 5e-5, 2e-5] {
+        for _ in 0..1000 {
+            // Just above the floor (y = 0) near the open front, clear of the blocks,
+            // heading down at a random slant.
+            let o = glam::Vec3::new(0.5 + 4.0 * rng.uniform(), gap, 0.2 + 0.3 * rng.uniform());
+            let d = glam::Vec3::new(rng.uniform() - 0.5, -1.0, rng.uniform() - 0.5).normalize();
+            let h = scene.bvh.intersect(o, d, f32::INFINITY).expect("the floor is hit");
+            assert!((h.t * -d.y - gap).abs() <= 1e-5, "gap {gap}: t {}", h.t);
+            assert!(!scene.bvh.unoccluded(o, d, 1.0), "gap {gap}: shadow ray passed through the floor");
+        }
+    }
+}

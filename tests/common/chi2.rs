@@ -1,0 +1,123 @@
+//! A reusable chi-square goodness-of-fit harness for direction samplers (as Mitsuba 3's
+//! `ChiSquareTest` and pbrt-v4's BSDF tests): a histogram of sampled directions against the
+//! sampler's pdf integrated over each cell.
+//!
+//! Cells are a `(θ, φ)` grid over a spherical cap of half-angle `theta_max` around `axis`
+//! (`theta_max = π` is the whole sphere), so narrow lobes get a fine grid where they live.
+//! Directions outside the cap and failed samples share one extra bin whose expected count is
+//! `N (1 - ∫_cap pdf)`. Cells expected to hold fewer than 5 samples are pooled.
+
+use footprint::math::Frame;
+use footprint::rng::Rng;
+use glam::Vec3;
+
+pub struct ChiSquareTest {
+    pub axis: Vec3,
+    pub theta_max: f64,
+    pub res_theta: usize,
+    pub res_phi: usize,
+    pub samples: usize,
+    /// Midpoint-rule points per cell side for integrating the pdf.
+    pub integration_res: usize,
+    pub seed: u64,
+}
+
+#[derive(Debug)]
+pub struct ChiSquareResult {
+    pub chi2: f64,
+    pub dof: usize,
+    pub p_value: f64,
+    /// ∫ pdf over the cap, by the midpoint rule.
+    pub integral: f64,
+}
+
+impl ChiSquareTest {
+    pub fn sphere(samples: usize) -> Self {
+        ChiSquareTest { axis: Vec3::Z, theta_max: std::f64::consts::PI, res_theta: 40, res_phi: 80, samples, integration_res: 16, seed: 1 }
+    }
+
+    fn dir(frame: &Frame, theta: f64, phi: f64) -> Vec3 {
+        let (st, ct) = theta.sin_cos();
+        let (sp, cp) = phi.sin_cos();
+        frame.to_world(Vec3::new((st * cp) as f32, (st * sp) as f32, ct as f32)).normalize()
+    }
+
+    /// Runs the test: `sample(rng)` draws one direction (or fails), `pdf(dir)` is its density
+    /// per steradian.
+    pub fn run(&self, mut sample: impl FnMut(&mut Rng) -> Option<Vec3>, pdf: impl Fn(Vec3) -> f64) -> ChiSquareResult {
+        let frame = Frame::from_z(self.axis.normalize());
+        let (nt, np) = (self.res_theta, self.res_phi);
+        let dt = self.theta_max / nt as f64;
+        let dp = 2.0 * std::f64::consts::PI / np as f64;
+        // Expected mass per cell.
+        let k = self.integration_res;
+        let mut expected = vec![0.0f64; nt * np];
+        for it in 0..nt {
+            for ip in 0..np {
+                let mut m = 0.0;
+                for a in 0..k {
+                    let th = (it as f64 + (a as f64 + 0.5) / k as f64) * dt;
+                    for b in 0..k {
+                        let ph = (ip as f64 + (b as f64 + 0.5) / k as f64) * dp;
+                        let p = pdf(Self::dir(&frame, th, ph));
+                        assert!(p.is_finite() && p >= 0.0, "pdf returned {p}");
+                        m += p * th.sin();
+                    }
+                }
+                expected[it * np + ip] = m * dt * dp / (k * k) as f64;
+            }
+        }
+        let integral: f64 = expected.iter().sum();
+        // Observed counts.
+        let mut observed = vec![0.0f64; nt * np];
+        let mut outside = 0.0f64;
+        let mut rng = Rng::new(self.seed, 0xC41, 0);
+        for _ in 0..self.samples {
+            match sample(&mut rng) {
+                Some(d) => {
+                    assert!(d.is_finite(), "sampled a non-finite direction");
+                    let l = frame.to_local(d.normalize());
+                    let th = (l.z as f64).clamp(-1.0, 1.0).acos();
+                    if th >= self.theta_max {
+                        outside += 1.0;
+                        continue;
+                    }
+                    let mut ph = (l.y as f64).atan2(l.x as f64);
+                    if ph < 0.0 {
+                        ph += 2.0 * std::f64::consts::PI;
+                    }
+                    let it = ((th / dt) as usize).min(nt - 1);
+                    let ip = ((ph / dp) as usize).min(np - 1);
+                    observed[it * np + ip] += 1.0;
+                }
+                None => outside += 1.0,
+            }
+        }
+        let n = self.samples as f64;
+        // Pool low-expectation cells; the outside bin is one more cell.
+        let mut cells: Vec<(f64, f64)> = observed.iter().zip(&expected).map(|(o, e)| (*o, e * n)).collect();
+        cells.push((outside, (1.0 - integral).max(0.0) * n));
+        let mut chi2 = 0.0;
+        let mut bins = 0usize;
+        let (mut pool_o, mut pool_e) = (0.0, 0.0);
+        for (o, e) in cells {
+            if e < 5.0 {
+                pool_o += o;
+                pool_e += e;
+            } else {
+                chi2 += (o - e) * (o - e) / e;
+                bins += 1;
+            }
+        }
+        if pool_e > 0.0 {
+            chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e;
+            bins += 1;
+        } else if pool_o > 0.0 {
+            // Samples where the pdf says there can be none.
+            chi2 = f64::INFINITY;
+        }
+        let dof = bins.saturating_sub(1).max(1);
+        let p_value = if chi2.is_finite() { super::chi2_sf(chi2, dof as f64) } else { 0.0 };
+        ChiSquareResult { chi2, dof, p_value, integral }
+    }
+}
