@@ -65,7 +65,12 @@ impl Bvh {
     #[inline]
     pub fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<BvhHit> {
         let start = origin - ORIGIN_BACKOFF * dir;
-        let ray = BvhRay::new(Vec3A::from(start), Vec3A::from(dir), 0.0, t_max + ORIGIN_BACKOFF);
+        let ray = BvhRay::new(
+            Vec3A::from(start),
+            Vec3A::from(dir),
+            0.0,
+            t_max + ORIGIN_BACKOFF,
+        );
         let mut hit = RayHit::none();
         let mut best = (0.0f32, 0.0f32);
         let found = self.bvh.ray_traverse(ray, &mut hit, |r, id| {
@@ -95,7 +100,12 @@ impl Bvh {
     #[inline]
     pub fn unoccluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
         let start = origin - ORIGIN_BACKOFF * dir;
-        let ray = BvhRay::new(Vec3A::from(start), Vec3A::from(dir), 0.0, t_max + ORIGIN_BACKOFF);
+        let ray = BvhRay::new(
+            Vec3A::from(start),
+            Vec3A::from(dir),
+            0.0,
+            t_max + ORIGIN_BACKOFF,
+        );
         self.bvh.ray_traverse_miss(ray, |r, id| {
             match self.ordered[id].intersect_range(start, dir, ORIGIN_BACKOFF, r.tmax) {
                 Some((t, _, _)) => t,

@@ -45,7 +45,13 @@ impl TriangleGeom {
 
     /// Möller–Trumbore intersection for `t_min < t < t_max`.
     #[inline(always)]
-    pub fn intersect_range(&self, origin: Vec3, dir: Vec3, t_min: f32, t_max: f32) -> Option<(f32, f32, f32)> {
+    pub fn intersect_range(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        t_min: f32,
+        t_max: f32,
+    ) -> Option<(f32, f32, f32)> {
         let pvec = dir.cross(self.e2);
         let det = self.e1.dot(pvec);
         if det == 0.0 || !det.is_finite() {

@@ -75,5 +75,9 @@ fn path_tracer_and_light_tracer_agree_on_cornell() {
         }
     }
     eprintln!("largest |t| = {worst:.2}, critical {crit:.2}");
-    assert!(failures.is_empty(), "regions disagree (critical |t| {crit:.2}):\n{}", failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "regions disagree (critical |t| {crit:.2}):\n{}",
+        failures.join("\n")
+    );
 }

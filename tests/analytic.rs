@@ -44,7 +44,10 @@ fn furnace_radiance_is_one_for_both_integrators() {
             let (mean, se) = mean_stderr(m);
             let bound = crit * se + 0.5f64.powi(64);
             eprintln!("{integrator:?} channel {c}: mean {mean:.5} ± {se:.5} (bound {bound:.5})");
-            assert!(se > 0.0 && se < 0.02, "{integrator:?}: standard error {se} is implausible");
+            assert!(
+                se > 0.0 && se < 0.02,
+                "{integrator:?}: standard error {se} is implausible"
+            );
             assert!(
                 (mean - 1.0).abs() <= bound,
                 "{integrator:?} channel {c}: mean radiance {mean} differs from 1 by more than {bound}"

@@ -22,7 +22,9 @@ fn bvh_matches_brute_force_on_every_scene() {
             let d = sample_uniform_sphere(rng.uniform2());
             let mut best: Option<(f32, usize)> = None;
             for (i, t) in scene.triangles.iter().enumerate() {
-                if let Some((t, _, _)) = t.intersect(o, d, best.map(|b| b.0).unwrap_or(f32::INFINITY)) {
+                if let Some((t, _, _)) =
+                    t.intersect(o, d, best.map(|b| b.0).unwrap_or(f32::INFINITY))
+                {
                     best = Some((t, i));
                 }
             }
@@ -30,7 +32,11 @@ fn bvh_matches_brute_force_on_every_scene() {
             // An origin within rounding distance of a surface makes "is it in front?"
             // ambiguous; the renderer never starts rays there (origins are offset).
             let eps = 1e-5;
-            if scene.triangles.iter().any(|t| t.intersect_range(o - eps * d, d, 0.0, 2.0 * eps).is_some()) {
+            if scene
+                .triangles
+                .iter()
+                .any(|t| t.intersect_range(o - eps * d, d, 0.0, 2.0 * eps).is_some())
+            {
                 continue;
             }
             match (best, got) {
@@ -43,19 +49,37 @@ fn bvh_matches_brute_force_on_every_scene() {
                     assert!((t - h.t).abs() <= tol, "{name}: t {t} vs {}", h.t);
                     if h.triangle as usize != i {
                         // Only a tie (a shared edge or vertex) may pick another triangle.
-                        let other = scene.triangles[h.triangle as usize].intersect(o, d, f32::INFINITY);
-                        assert!(other.is_some_and(|(t2, _, _)| (t2 - t).abs() <= tol), "{name}: different triangle");
+                        let other =
+                            scene.triangles[h.triangle as usize].intersect(o, d, f32::INFINITY);
+                        assert!(
+                            other.is_some_and(|(t2, _, _)| (t2 - t).abs() <= tol),
+                            "{name}: different triangle"
+                        );
                     }
                     // The barycentrics reported belong to the hit.
                     let p = scene.triangles[h.triangle as usize].point(h.b1, h.b2);
-                    assert!((p - (o + h.t * d)).length() <= 1e-3 * (1.0 + o.length()), "{name}: barycentrics");
-                    assert!(!scene.bvh.unoccluded(o, d, h.t + tol), "{name}: shadow ray missed a hit: o {o:?} d {d:?} t {} tri {}", h.t, h.triangle);
-                    assert!(h.t <= tol || scene.bvh.unoccluded(o, d, h.t - tol), "{name}: shadow ray hit before the closest hit");
+                    assert!(
+                        (p - (o + h.t * d)).length() <= 1e-3 * (1.0 + o.length()),
+                        "{name}: barycentrics"
+                    );
+                    assert!(
+                        !scene.bvh.unoccluded(o, d, h.t + tol),
+                        "{name}: shadow ray missed a hit: o {o:?} d {d:?} t {} tri {}",
+                        h.t,
+                        h.triangle
+                    );
+                    assert!(
+                        h.t <= tol || scene.bvh.unoccluded(o, d, h.t - tol),
+                        "{name}: shadow ray hit before the closest hit"
+                    );
                 }
                 (b, g) => panic!("{name}: brute force {b:?} vs bvh {g:?}"),
             }
         }
-        assert!(hits > 1000, "{name}: too few hits ({hits}) to mean anything");
+        assert!(
+            hits > 1000,
+            "{name}: too few hits ({hits}) to mean anything"
+        );
     }
 }
 
@@ -71,9 +95,15 @@ fn surfaces_close_to_the_origin_are_hit() {
             // heading down at a random slant.
             let o = glam::Vec3::new(0.5 + 4.0 * rng.uniform(), gap, 0.2 + 0.3 * rng.uniform());
             let d = glam::Vec3::new(rng.uniform() - 0.5, -1.0, rng.uniform() - 0.5).normalize();
-            let h = scene.bvh.intersect(o, d, f32::INFINITY).expect("the floor is hit");
+            let h = scene
+                .bvh
+                .intersect(o, d, f32::INFINITY)
+                .expect("the floor is hit");
             assert!((h.t * -d.y - gap).abs() <= 1e-5, "gap {gap}: t {}", h.t);
-            assert!(!scene.bvh.unoccluded(o, d, 1.0), "gap {gap}: shadow ray passed through the floor");
+            assert!(
+                !scene.bvh.unoccluded(o, d, 1.0),
+                "gap {gap}: shadow ray passed through the floor"
+            );
         }
     }
 }

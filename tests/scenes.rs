@@ -10,7 +10,14 @@ use footprint::loader::load_scene;
 use footprint_integrators::{Integrator, RenderOptions, render};
 
 fn opts(integrator: Integrator, spp: u32, seed: u64) -> RenderOptions {
-    RenderOptions { integrator, spp, time: None, max_depth: 12, seed, progress: false }
+    RenderOptions {
+        integrator,
+        spp,
+        time: None,
+        max_depth: 12,
+        seed,
+        progress: false,
+    }
 }
 
 #[test]
@@ -21,13 +28,23 @@ fn no_invalid_pixel_in_any_bundled_scene() {
         for integrator in [Integrator::Pt, Integrator::Lt] {
             let r = render(&scene, &opts(integrator, 16, 3), |_| {});
             assert!(r.image.all_valid(), "{name} {integrator:?}: invalid pixel");
-            assert_eq!(r.stats.rejected, 0, "{name} {integrator:?}: rejected samples");
+            assert_eq!(
+                r.stats.rejected, 0,
+                "{name} {integrator:?}: rejected samples"
+            );
             // door is lit only through a 4 cm gap: at 64x64 and 16 samples neither unguided
             // integrator is sure to find a lit pixel (that is what guiding is for).
             if name != "door" {
-                assert!(r.image.mean().max_element() > 0.0, "{name} {integrator:?}: black image");
+                assert!(
+                    r.image.mean().max_element() > 0.0,
+                    "{name} {integrator:?}: black image"
+                );
             }
-            eprintln!("{name} {integrator:?}: mean {:?}, largest sample {:.3}", r.image.mean(), r.stats.max_luminance);
+            eprintln!(
+                "{name} {integrator:?}: mean {:?}, largest sample {:.3}",
+                r.image.mean(),
+                r.stats.max_luminance
+            );
         }
     }
 }
@@ -35,17 +52,46 @@ fn no_invalid_pixel_in_any_bundled_scene() {
 #[test]
 fn effect_analysis_is_right_for_each_scene() {
     let e = |name: &str| load_scene(&scene_path(name)).unwrap().effects;
-    let diffuse_area = Effects { diffuse: true, area_lights: true, ..Default::default() };
+    let diffuse_area = Effects {
+        diffuse: true,
+        area_lights: true,
+        ..Default::default()
+    };
     assert_eq!(e("cornell"), diffuse_area);
     assert_eq!(e("door"), diffuse_area);
     assert_eq!(e("furnace"), diffuse_area);
-    assert_eq!(e("desk"), Effects { diffuse: true, glossy: true, spot_lights: true, ..Default::default() });
+    assert_eq!(
+        e("desk"),
+        Effects {
+            diffuse: true,
+            glossy: true,
+            spot_lights: true,
+            ..Default::default()
+        }
+    );
     // The skips follow from the effects.
     let desk = load_scene(&scene_path("desk")).unwrap();
-    assert!(desk.effects.skipped().iter().any(|s| s.contains("no area lights")));
+    assert!(
+        desk.effects
+            .skipped()
+            .iter()
+            .any(|s| s.contains("no area lights"))
+    );
     let cornell = load_scene(&scene_path("cornell")).unwrap();
-    assert!(cornell.effects.skipped().iter().any(|s| s.contains("no glossy")));
-    assert!(!cornell.effects.skipped().iter().any(|s| s.contains("no area lights")));
+    assert!(
+        cornell
+            .effects
+            .skipped()
+            .iter()
+            .any(|s| s.contains("no glossy"))
+    );
+    assert!(
+        !cornell
+            .effects
+            .skipped()
+            .iter()
+            .any(|s| s.contains("no area lights"))
+    );
 }
 
 #[test]
@@ -54,15 +100,27 @@ fn equal_seeds_give_equal_images_whatever_the_thread_count() {
     scene.camera = scene.camera.with_resolution(48, 40).unwrap();
     for integrator in [Integrator::Pt, Integrator::Lt] {
         let run = |threads: usize| {
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
             pool.install(|| render(&scene, &opts(integrator, 3, 42), |_| {}).image)
         };
         let (a, b, c) = (run(1), run(2), run(5));
-        assert!(a.pixels == b.pixels && b.pixels == c.pixels, "{integrator:?}: image depends on the thread count");
+        assert!(
+            a.pixels == b.pixels && b.pixels == c.pixels,
+            "{integrator:?}: image depends on the thread count"
+        );
         let other = {
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(2)
+                .build()
+                .unwrap();
             pool.install(|| render(&scene, &opts(integrator, 3, 43), |_| {}).image)
         };
-        assert!(other.pixels != a.pixels, "{integrator:?}: the seed changes nothing");
+        assert!(
+            other.pixels != a.pixels,
+            "{integrator:?}: the seed changes nothing"
+        );
     }
 }

@@ -47,7 +47,7 @@ enum Command {
         #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
         spp: Option<u32>,
         /// Render for this many seconds instead of a sample count
-        #[arg(long, conflicts_with = "spp")]
+        #[arg(long, conflicts_with = "spp", allow_negative_numbers = true)]
         time: Option<f64>,
         /// Maximum path length in segments [default: the scene's render.max_depth, else 8]
         #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]

@@ -33,18 +33,32 @@ pub struct ChiSquareResult {
 
 impl ChiSquareTest {
     pub fn sphere(samples: usize) -> Self {
-        ChiSquareTest { axis: Vec3::Z, theta_max: std::f64::consts::PI, res_theta: 40, res_phi: 80, samples, integration_res: 16, seed: 1 }
+        ChiSquareTest {
+            axis: Vec3::Z,
+            theta_max: std::f64::consts::PI,
+            res_theta: 40,
+            res_phi: 80,
+            samples,
+            integration_res: 16,
+            seed: 1,
+        }
     }
 
     fn dir(frame: &Frame, theta: f64, phi: f64) -> Vec3 {
         let (st, ct) = theta.sin_cos();
         let (sp, cp) = phi.sin_cos();
-        frame.to_world(Vec3::new((st * cp) as f32, (st * sp) as f32, ct as f32)).normalize()
+        frame
+            .to_world(Vec3::new((st * cp) as f32, (st * sp) as f32, ct as f32))
+            .normalize()
     }
 
     /// Runs the test: `sample(rng)` draws one direction (or fails), `pdf(dir)` is its density
     /// per steradian.
-    pub fn run(&self, mut sample: impl FnMut(&mut Rng) -> Option<Vec3>, pdf: impl Fn(Vec3) -> f64) -> ChiSquareResult {
+    pub fn run(
+        &self,
+        mut sample: impl FnMut(&mut Rng) -> Option<Vec3>,
+        pdf: impl Fn(Vec3) -> f64,
+    ) -> ChiSquareResult {
         let frame = Frame::from_z(self.axis.normalize());
         let (nt, np) = (self.res_theta, self.res_phi);
         let dt = self.theta_max / nt as f64;
@@ -95,7 +109,11 @@ impl ChiSquareTest {
         }
         let n = self.samples as f64;
         // Pool low-expectation cells; the outside bin is one more cell.
-        let mut cells: Vec<(f64, f64)> = observed.iter().zip(&expected).map(|(o, e)| (*o, e * n)).collect();
+        let mut cells: Vec<(f64, f64)> = observed
+            .iter()
+            .zip(&expected)
+            .map(|(o, e)| (*o, e * n))
+            .collect();
         cells.push((outside, (1.0 - integral).max(0.0) * n));
         let mut chi2 = 0.0;
         let mut bins = 0usize;
@@ -117,7 +135,16 @@ impl ChiSquareTest {
             chi2 = f64::INFINITY;
         }
         let dof = bins.saturating_sub(1).max(1);
-        let p_value = if chi2.is_finite() { super::chi2_sf(chi2, dof as f64) } else { 0.0 };
-        ChiSquareResult { chi2, dof, p_value, integral }
+        let p_value = if chi2.is_finite() {
+            super::chi2_sf(chi2, dof as f64)
+        } else {
+            0.0
+        };
+        ChiSquareResult {
+            chi2,
+            dof,
+            p_value,
+            integral,
+        }
     }
 }
