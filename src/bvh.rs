@@ -6,7 +6,8 @@
 //! node test), which would miss surfaces closer than that to a ray's origin: in a corner, a
 //! ray leaving one wall could pass through the next. Every query therefore starts
 //! [`ORIGIN_BACKOFF`] behind its origin and accepts only triangles beyond that distance, so
-//! every hit in front of the true origin lies in boxes the node test keeps.
+//! every hit in front of the true origin lies in boxes the node test keeps. Directions have
+//! their negative zeros made positive (see [`canonical_zeros`]).
 
 use crate::geometry::TriangleGeom;
 use glam::{Vec3, Vec3A};
@@ -23,6 +24,13 @@ pub struct BvhHit {
     pub t: f32,
     pub b1: f32,
     pub b2: f32,
+}
+
+/// `-0.0` components become `+0.0`: obvhs takes the slab order from `d < 0` but the
+/// inverse from the sign bit, so a `-0.0` component would swap a node's slabs and miss it.
+#[inline(always)]
+fn canonical_zeros(d: Vec3) -> Vec3 {
+    d + Vec3::ZERO
 }
 
 /// How far behind its origin a query ray starts (more than obvhs' node epsilon of 1e-4).
@@ -64,6 +72,7 @@ impl Bvh {
     /// Closest hit along `origin + t dir`, `0 < t < t_max`.
     #[inline]
     pub fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<BvhHit> {
+        let dir = canonical_zeros(dir);
         let start = origin - ORIGIN_BACKOFF * dir;
         let ray = BvhRay::new(
             Vec3A::from(start),
@@ -99,6 +108,7 @@ impl Bvh {
     /// True when nothing blocks `origin + t dir` for `0 < t < t_max` (shadow rays).
     #[inline]
     pub fn unoccluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
+        let dir = canonical_zeros(dir);
         let start = origin - ORIGIN_BACKOFF * dir;
         let ray = BvhRay::new(
             Vec3A::from(start),

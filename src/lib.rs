@@ -18,6 +18,7 @@ pub mod light;
 pub mod loader;
 pub mod material;
 pub mod math;
+pub mod particle_map;
 pub mod rng;
 pub mod sampling;
 pub mod scene;

@@ -4,14 +4,15 @@
 //! * `sample_li`: a point on the light seen from a shading point (next-event estimation),
 //!   with its density per steradian at the shading point;
 //! * `sample_le`: an emitted ray (light tracing and the photon pass), with its positional
-//!   density per area and directional density per steradian;
+//!   density per area and directional density per steradian (`pdf_le_dir`); spot lights emit
+//!   in proportion to their falloff, so every photon of a light carries the same flux;
 //! * `power`: the emitted flux, by which lights are chosen.
 
 use crate::geometry::TriangleGeom;
 use crate::math::{Frame, PI, Rgb, luminance};
 use crate::sampling::{
-    cosine_hemisphere_pdf, sample_cosine_hemisphere, sample_uniform_cone, sample_uniform_sphere,
-    sample_uniform_triangle, uniform_cone_pdf, uniform_sphere_pdf,
+    cosine_hemisphere_pdf, sample_cosine_hemisphere, sample_uniform_sphere, sample_uniform_triangle,
+    uniform_sphere_pdf,
 };
 use glam::{Vec2, Vec3};
 
@@ -269,17 +270,16 @@ impl Light {
                 pdf_dir: uniform_sphere_pdf(),
                 cos_light: 1.0,
             }),
-            Light::Spot {
-                position,
-                frame,
-                cos_outer,
-                ..
-            } => {
+            Light::Spot { position, frame, cos_inner, cos_outer, .. } => {
+                let cos_t = Self::sample_spot_cos(u_dir.x, *cos_inner, *cos_outer);
+                let sin_t = crate::math::safe_sqrt(1.0 - cos_t * cos_t);
+                let phi = 2.0 * PI * u_dir.y;
                 let dir = frame
-                    .to_world(sample_uniform_cone(u_dir, *cos_outer))
+                    .to_world(Vec3::new(sin_t * phi.cos(), sin_t * phi.sin(), cos_t))
                     .normalize();
                 let le = self.emitted(dir);
-                if le.max_element() <= 0.0 {
+                let pdf_dir = self.pdf_le_dir(dir);
+                if le.max_element() <= 0.0 || pdf_dir <= 0.0 {
                     return None;
                 }
                 Some(LightEmission {
@@ -288,11 +288,51 @@ impl Light {
                     dir,
                     le,
                     pdf_pos: 1.0,
-                    pdf_dir: uniform_cone_pdf(*cos_outer),
+                    pdf_dir,
                     cos_light: 1.0,
                 })
             }
         }
+    }
+
+    /// Density per steradian with which [`Light::sample_le`] emits `dir` (unit, world).
+    pub fn pdf_le_dir(&self, dir: Vec3) -> f32 {
+        match self {
+            Light::Area { n, .. } => cosine_hemisphere_pdf(dir.dot(*n)),
+            Light::Point { .. } => uniform_sphere_pdf(),
+            Light::Spot { frame, cos_inner, cos_outer, .. } => {
+                // Proportional to the falloff: falloff / (2π ∫ falloff d(cos θ)).
+                let norm = (1.0 - cos_inner) + 0.5 * (cos_inner - cos_outer);
+                Self::spot_falloff(dir.dot(frame.z), *cos_inner, *cos_outer) / (2.0 * PI * norm)
+            }
+        }
+    }
+
+    /// `cos θ` with density proportional to the spot falloff on `[cos_outer, 1]`: the full
+    /// cap `[cos_inner, 1]` with probability equal to its share, else the smoothstep ring,
+    /// whose normalised cdf in `t = (cos θ - cos_outer)/(cos_inner - cos_outer)` is
+    /// `2t³ - t⁴` (inverted by Newton's method). Every photon of a spot light then carries
+    /// the same flux.
+    fn sample_spot_cos(u: f32, cos_inner: f32, cos_outer: f32) -> f32 {
+        let cap = 1.0 - cos_inner;
+        let ring = 0.5 * (cos_inner - cos_outer);
+        let p_cap = cap / (cap + ring);
+        if u < p_cap || ring <= 0.0 {
+            let v = if p_cap > 0.0 { (u / p_cap).min(1.0) } else { u };
+            return 1.0 - v * cap;
+        }
+        let v = ((u - p_cap) / (1.0 - p_cap)).clamp(0.0, 1.0);
+        // Solve 2t³ - t⁴ = v on [0, 1]; monotone, derivative 6t² - 4t³ = 2t²(3 - 2t).
+        let mut t = v.sqrt().max(1e-3);
+        for _ in 0..12 {
+            let f = 2.0 * t * t * t - t * t * t * t - v;
+            let d = 2.0 * t * t * (3.0 - 2.0 * t);
+            if d <= 0.0 {
+                break;
+            }
+            t = (t - f / d).clamp(0.0, 1.0);
+        }
+        cos_outer + t * (cos_inner - cos_outer)
     }
 
     /// Position and, for area lights, a sampled point's positional density: used when a

@@ -11,7 +11,7 @@ use crate::geometry::{TriangleGeom, TriangleShading};
 use crate::light::Light;
 use crate::material::{Material, MaterialKind};
 use crate::math::{Frame, Rgb};
-use crate::scene::{INTEGRATORS, LoadStats, RenderSettings, Scene};
+use crate::scene::{INTEGRATORS, LoadStats, MapSettings, RenderSettings, Scene};
 use crate::texture::Texture;
 use glam::{Mat3, Mat4, Vec2, Vec3};
 use serde::Deserialize;
@@ -26,6 +26,8 @@ struct SceneFile {
     camera: CameraDesc,
     #[serde(default)]
     render: RenderDesc,
+    #[serde(default)]
+    maps: MapsDesc,
     #[serde(default)]
     mesh: Vec<MeshDesc>,
     #[serde(default)]
@@ -55,6 +57,15 @@ struct RenderDesc {
     time: Option<f64>,
     max_depth: Option<u32>,
     seed: Option<u64>,
+}
+
+#[derive(Deserialize, Debug, Default)]
+#[serde(deny_unknown_fields)]
+struct MapsDesc {
+    photons: Option<usize>,
+    importons: Option<usize>,
+    max_dist: Option<f32>,
+    soft_glossy_max: Option<f32>,
 }
 
 #[derive(Deserialize, Debug)]
@@ -287,11 +298,28 @@ fn build_scene(path: &Path, dir: &Path, file: SceneFile) -> Result<Scene> {
         });
     }
 
+    // ---- Particle maps ----
+    let mut maps = MapSettings::default();
+    let m = &file.maps;
+    if let Some(v) = m.photons {
+        maps.photons = v;
+    }
+    if let Some(v) = m.importons {
+        maps.importons = v;
+    }
+    if m.max_dist.is_some() {
+        maps.max_dist = m.max_dist;
+    }
+    if let Some(v) = m.soft_glossy_max {
+        maps.soft_glossy_max = v;
+    }
+    maps.validate().map_err(|e| Error::invalid(path, format!("maps.{e}")))?;
+
     stats.triangles = triangles.len();
-    Scene::new(
-        camera, triangles, shading, materials, textures, lights, settings, stats,
-    )
-    .map_err(|m| Error::invalid(path, m))
+    let mut scene = Scene::new(camera, triangles, shading, materials, textures, lights, settings, stats)
+        .map_err(|m| Error::invalid(path, m))?;
+    scene.maps = maps;
+    Ok(scene)
 }
 
 fn mesh_transform(path: &Path, field: &str, t: Option<&TransformDesc>) -> Result<Mat4> {

@@ -40,6 +40,54 @@ impl Default for RenderSettings {
     }
 }
 
+/// Particle-map settings read from the scene file's `[maps]` table (the command line may
+/// override them).
+#[derive(Clone, Debug)]
+pub struct MapSettings {
+    /// Photon paths shot by the light pass.
+    pub photons: usize,
+    /// Importon paths shot by the view pass.
+    pub importons: usize,
+    /// Maximum distance of a particle from a query point; `None`: 5% of the scene's
+    /// bounding-box diagonal.
+    pub max_dist: Option<f32>,
+    /// Blinn exponents up to this are "soft glossy" (particles stored, footprints used);
+    /// above it "strongly glossy" (treated like specular).
+    pub soft_glossy_max: f32,
+}
+
+impl Default for MapSettings {
+    fn default() -> Self {
+        MapSettings { photons: 200_000, importons: 200_000, max_dist: None, soft_glossy_max: 100.0 }
+    }
+}
+
+/// Largest particle path count accepted (each path may store several particles).
+pub const MAX_MAP_PATHS: usize = 50_000_000;
+
+impl MapSettings {
+    /// Checks the settings; the error names the offending field.
+    pub fn validate(&self) -> Result<(), String> {
+        for (name, n) in [("photons", self.photons), ("importons", self.importons)] {
+            if n == 0 {
+                return Err(format!("{name} must be at least 1"));
+            }
+            if n > MAX_MAP_PATHS {
+                return Err(format!("{name} = {n} is absurd: at most {MAX_MAP_PATHS} paths"));
+            }
+        }
+        if let Some(d) = self.max_dist {
+            if !(d.is_finite() && d > 0.0) {
+                return Err(format!("max_dist must be a positive distance, got {d}"));
+            }
+        }
+        if !(self.soft_glossy_max.is_finite() && self.soft_glossy_max >= 0.0) {
+            return Err(format!("soft_glossy_max must be finite and >= 0, got {}", self.soft_glossy_max));
+        }
+        Ok(())
+    }
+}
+
 /// Counts reported after loading.
 #[derive(Clone, Debug, Default)]
 pub struct LoadStats {
@@ -59,6 +107,7 @@ pub struct Scene {
     pub light_distribution: Distribution1D,
     pub bvh: Bvh,
     pub settings: RenderSettings,
+    pub maps: MapSettings,
     pub effects: Effects,
     pub stats: LoadStats,
     /// Scene bounding box.
@@ -125,6 +174,7 @@ impl Scene {
             light_distribution,
             bvh,
             settings,
+            maps: MapSettings::default(),
             effects,
             stats,
             bounds: (lo, hi),
@@ -207,6 +257,11 @@ impl Scene {
     #[inline]
     pub fn visible_from_camera(&self, p: Vec3, ng: Vec3) -> bool {
         self.visible(p, ng, self.camera.position, None)
+    }
+
+    /// The maximum particle query distance: the setting, or 5% of the bounding-box diagonal.
+    pub fn map_max_dist(&self) -> f32 {
+        self.maps.max_dist.unwrap_or(0.05 * (self.bounds.1 - self.bounds.0).length())
     }
 
     /// Probability of choosing light `i`.

@@ -54,6 +54,57 @@ pub fn run(scenes: &Path, seconds: f64) -> Result<()> {
         door.triangles.len()
     );
 
+    // ---- Particle maps: build time, and k = 50 queries on door's maps ----
+    use footprint::particle_map::{MapKind, ParticleMap};
+    use footprint_integrators::passes::{PassSettings, light_pass, view_pass};
+    for paths in [50_000usize, 500_000] {
+        let s = PassSettings { paths, max_depth: door.settings.max_depth, seed: 1, soft_glossy_max: door.maps.soft_glossy_max };
+        let pass = light_pass(&door, &s);
+        let t = Instant::now();
+        let map = ParticleMap::build(MapKind::Photons, &pass.particles);
+        println!(
+            "door photon map: {} particles built in {:.3} s ({} paths traced in {:.3} s)",
+            map.len(),
+            t.elapsed().as_secs_f64(),
+            paths,
+            pass.stats.time.as_secs_f64()
+        );
+    }
+    let max_dist = door.map_max_dist();
+    let s = PassSettings { paths: door.maps.photons, max_depth: door.settings.max_depth, seed: 1, soft_glossy_max: door.maps.soft_glossy_max };
+    for (kind, pass) in [(MapKind::Photons, light_pass(&door, &s)), (MapKind::Importons, view_pass(&door, &s))] {
+        let map = ParticleMap::build(kind, &pass.particles);
+        // Query points: where camera rays hit, the points a guided path tracer asks about.
+        let points: Vec<(glam::Vec3, glam::Vec3)> = (0..4096u64)
+            .filter_map(|i| {
+                let mut rng = Rng::new(3, 9, i);
+                let raster = rng.uniform2() * Vec2::new(cam.width as f32, cam.height as f32);
+                let d = cam.ray_dir(raster);
+                door.intersect(cam.position, d, f32::INFINITY).map(|h| (h.p, if h.ng.dot(d) < 0.0 { h.ng } else { -h.ng }))
+            })
+            .collect();
+        let start = Instant::now();
+        let mut queries = 0u64;
+        let mut found = 0u64;
+        while start.elapsed().as_secs_f64() < seconds {
+            let (q, f) = points
+                .par_iter()
+                .map_init(Vec::new, |buf, (p, n)| (1u64, map.query(*p, *n, 50, max_dist, |_| 1.0, buf) as u64))
+                .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+            queries += q;
+            found += f;
+        }
+        let qps = queries as f64 / start.elapsed().as_secs_f64();
+        println!(
+            "door {}: {:.3} M k=50 queries/s ({} particles, {:.1} found on average): one query costs as much as {:.0} closest-hit rays",
+            kind.name(),
+            qps / 1e6,
+            map.len(),
+            found as f64 / queries as f64,
+            rps / qps
+        );
+    }
+
     // ---- Path samples on cornell ----
     let cornell = load_scene(&scenes.join("cornell/cornell.toml"))?;
     let mut opts = RenderOptions::from_scene(&cornell);

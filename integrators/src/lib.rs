@@ -3,9 +3,13 @@
 //! * [`path_tracer`]: paths from the camera with next-event estimation and MIS;
 //! * [`light_tracer`]: paths from the lights, every non-specular vertex connected to the
 //!   pinhole camera and splatted onto the film;
+//! * [`maps`]: building the maps and their pictures;
+//! * [`passes`]: the light pass (photon map) and the view pass (importance map);
 //! * [`render`]: passes, threads, time budgets, progress, and the run summary.
 
 pub mod light_tracer;
+pub mod maps;
+pub mod passes;
 pub mod path_tracer;
 pub mod render;
 

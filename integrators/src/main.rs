@@ -13,6 +13,41 @@ use std::time::Instant;
 
 mod bench;
 
+/// Counts the heap bytes in use, so that `maps` can report what a particle map really
+/// occupies (kd-tree included).
+struct CountingAlloc;
+
+static HEAP_BYTES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+unsafe impl std::alloc::GlobalAlloc for CountingAlloc {
+    unsafe fn alloc(&self, layout: std::alloc::Layout) -> *mut u8 {
+        let p = unsafe { std::alloc::System.alloc(layout) };
+        if !p.is_null() {
+            HEAP_BYTES.fetch_add(layout.size(), std::sync::atomic::Ordering::Relaxed);
+        }
+        p
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: std::alloc::Layout) {
+        unsafe { std::alloc::System.dealloc(ptr, layout) };
+        HEAP_BYTES.fetch_sub(layout.size(), std::sync::atomic::Ordering::Relaxed);
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: std::alloc::Layout, new_size: usize) -> *mut u8 {
+        let p = unsafe { std::alloc::System.realloc(ptr, layout, new_size) };
+        if !p.is_null() {
+            HEAP_BYTES.fetch_add(new_size, std::sync::atomic::Ordering::Relaxed);
+            HEAP_BYTES.fetch_sub(layout.size(), std::sync::atomic::Ordering::Relaxed);
+        }
+        p
+    }
+}
+
+#[global_allocator]
+static GLOBAL: CountingAlloc = CountingAlloc;
+
+pub fn heap_bytes() -> Option<usize> {
+    Some(HEAP_BYTES.load(std::sync::atomic::Ordering::Relaxed))
+}
+
 #[derive(Parser, Debug)]
 #[command(
     name = "footprint",
@@ -66,6 +101,25 @@ enum Command {
         #[arg(long)]
         threads: Option<usize>,
     },
+    /// Build the photon map and the importance map and write pictures of them seen from the camera
+    Maps {
+        /// Scene file (.toml)
+        scene: PathBuf,
+        /// Folder for photons.png and importons.png (created if missing)
+        #[arg(long, short)]
+        out: PathBuf,
+        #[command(flatten)]
+        maps: MapArgs,
+        /// Maximum path length in segments [default: the scene's render.max_depth]
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+        max_depth: Option<u32>,
+        /// Random seed [default: the scene's render.seed]
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Worker threads [default: all cores]
+        #[arg(long)]
+        threads: Option<usize>,
+    },
     /// Measure speed: closest-hit rays per second on door, path samples per second on cornell
     Bench {
         /// Folder holding the bundled scenes
@@ -78,6 +132,45 @@ enum Command {
         #[arg(long)]
         threads: Option<usize>,
     },
+}
+
+/// Particle-map flags, shared by the commands that build maps.
+#[derive(clap::Args, Debug, Clone)]
+struct MapArgs {
+    /// Photon paths shot by the light pass [default: the scene's maps.photons, else 200000]
+    #[arg(long)]
+    photons: Option<usize>,
+    /// Importon paths shot by the view pass [default: the scene's maps.importons, else 200000]
+    #[arg(long)]
+    importons: Option<usize>,
+    /// Maximum distance of a particle from a query point [default: the scene's maps.max_dist,
+    /// else 5% of the scene's bounding-box diagonal]
+    #[arg(long, allow_negative_numbers = true)]
+    max_dist: Option<f32>,
+    /// Largest Blinn exponent counted as soft glossy (particles stored) [default: the scene's
+    /// maps.soft_glossy_max, else 100]
+    #[arg(long, allow_negative_numbers = true)]
+    soft_glossy_max: Option<f32>,
+}
+
+impl MapArgs {
+    /// Applies the flags to the scene's map settings and validates them.
+    fn apply(&self, scene: &mut Scene) -> Result<()> {
+        let m = &mut scene.maps;
+        if let Some(v) = self.photons {
+            m.photons = v;
+        }
+        if let Some(v) = self.importons {
+            m.importons = v;
+        }
+        if self.max_dist.is_some() {
+            m.max_dist = self.max_dist;
+        }
+        if let Some(v) = self.soft_glossy_max {
+            m.soft_glossy_max = v;
+        }
+        m.validate().map_err(|e| anyhow::anyhow!("--{}", e.replace('_', "-")))
+    }
 }
 
 fn main() {
@@ -155,6 +248,12 @@ fn run(cli: Cli) -> Result<()> {
             });
             render_command(&scene, &sc, opts, &out, exposure, load_time.as_secs_f64())
         }
+        Command::Maps { scene, out, maps, max_depth, seed, threads } => {
+            set_threads(threads)?;
+            let mut sc = load_scene(&scene)?;
+            maps.apply(&mut sc)?;
+            maps_command(&sc, &out, max_depth, seed)
+        }
         Command::Bench {
             scenes,
             seconds,
@@ -167,6 +266,29 @@ fn run(cli: Cli) -> Result<()> {
             bench::run(&scenes, seconds)
         }
     }
+}
+
+fn maps_command(scene: &Scene, out: &Path, max_depth: Option<u32>, seed: Option<u64>) -> Result<()> {
+    use footprint::particle_map::MapKind;
+    use footprint_integrators::maps::{build_map, picture};
+    use footprint_integrators::passes::PassSettings;
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let max_depth = max_depth.unwrap_or(scene.settings.max_depth);
+    let seed = seed.unwrap_or(scene.settings.seed);
+    println!("maximum query distance {:.4} (scene units)", scene.map_max_dist());
+    for (kind, paths, file) in [
+        (MapKind::Photons, scene.maps.photons, "photons.png"),
+        (MapKind::Importons, scene.maps.importons, "importons.png"),
+    ] {
+        let s = PassSettings { paths, max_depth, seed, soft_glossy_max: scene.maps.soft_glossy_max };
+        let built = build_map(scene, kind, &s, &heap_bytes);
+        println!("{}", built.summary());
+        let img = picture(scene, &built.pass.particles);
+        let path = out.join(file);
+        write_png(&path, &img, 0.0)?;
+        println!("  -> {}", path.display());
+    }
+    Ok(())
 }
 
 fn render_command(

@@ -13,7 +13,7 @@ use footprint::geometry::spawn_origin;
 use footprint::math::power_heuristic;
 use footprint::rng::Rng;
 use footprint::scene::Scene;
-use glam::Vec2;
+use glam::{Vec2, Vec3};
 
 /// Russian roulette starts after this many segments.
 pub const RR_START_DEPTH: u32 = 3;
@@ -21,8 +21,15 @@ pub const RR_START_DEPTH: u32 = 3;
 /// Estimates the radiance arriving at the camera through raster position `raster`.
 pub fn radiance(scene: &Scene, raster: Vec2, max_depth: u32, rng: &mut Rng) -> Rgb {
     let cam = &scene.camera;
-    let mut origin = cam.position;
-    let mut dir = cam.ray_dir(raster);
+    radiance_along(scene, cam.position, cam.ray_dir(raster), max_depth, rng)
+}
+
+/// Estimates the radiance arriving at `origin` from direction `-dir` (the ray `origin + t
+/// dir`); `origin` must already be offset off any surface it lies on. Emission at the first
+/// hit counts fully.
+pub fn radiance_along(scene: &Scene, origin: Vec3, dir: Vec3, max_depth: u32, rng: &mut Rng) -> Rgb {
+    let mut origin = origin;
+    let mut dir = dir;
     let mut beta = Rgb::ONE;
     let mut l = Rgb::ZERO;
     let mut prev_delta = true;

@@ -1,0 +1,340 @@
+//! Particle maps (Hey & Purgathofer 2001, §2.1): the photon map that guides view paths and the
+//! importance map that guides light paths are one data structure with two fillings. A photon
+//! carries flux `Φ_p`, an importon importance `W_p` (RGB, per channel, §2.1 last paragraph);
+//! both carry their incoming direction `Ψ_p` (pointing away from the surface, toward where
+//! the particle came from) and the normal of the surface they landed on, oriented toward the
+//! side they arrived from.
+//!
+//! Storage: a kiddo `ImmutableKdTree` over positions (12 bytes of coordinates and a 4-byte
+//! index per particle) and a compact 14-byte record per particle: `Ψ_p` octahedral-encoded in
+//! 2 x 16 bits, the normal in 2 x 8 bits, the weight as three IEEE half floats relative to a
+//! per-map scale, and the offset of the particle's tangent plane (half float) for the plane
+//! rule below. About 31 bytes per particle in all, tree included; the paper used 96.
+//!
+//! Query (§2.1): the `k` nearest particles within a maximum distance whose contribution
+//! `c_p = Φ_p f_r(x, Ψ_p, Ψ_i)` (computed by the caller) is non-zero. Particles on a surface
+//! facing elsewhere (stored normal more than ~45° from the query normal, which excludes the
+//! back of a thin wall) or on another parallel surface (the query point lies farther from the
+//! particle's tangent plane than a fraction of the maximum distance: a floor under a table)
+//! do not count. Fewer than `k` found is
+//! reported, so the caller can fall back to the BSDF.
+
+use crate::Rgb;
+use glam::{Vec2, Vec3};
+use kiddo::SquaredEuclidean;
+use std::num::NonZeroUsize;
+use std::time::{Duration, Instant};
+
+/// What a map holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MapKind {
+    /// Photons from the light pass; weight = flux `Φ_p`.
+    Photons,
+    /// Importons from the view pass; weight = importance `W_p`.
+    Importons,
+}
+
+impl MapKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            MapKind::Photons => "photon map",
+            MapKind::Importons => "importance map",
+        }
+    }
+}
+
+/// A particle as a pass produces it (full precision, before compaction).
+#[derive(Clone, Copy, Debug)]
+pub struct ParticleInput {
+    pub position: Vec3,
+    /// `Ψ_p`: unit direction toward where the particle came from.
+    pub dir: Vec3,
+    /// Unit normal of the surface, on the side the particle arrived from.
+    pub normal: Vec3,
+    /// `Φ_p` or `W_p`.
+    pub weight: Rgb,
+    /// Path segments from the light (photons) or camera (importons) to this point.
+    pub depth: u16,
+    /// True when every earlier scattering vertex of the path was specular.
+    pub specular_chain: bool,
+}
+
+/// The compact record: 14 bytes, 2-byte aligned.
+#[derive(Clone, Copy, Debug)]
+#[repr(C)]
+struct Record {
+    dir: [u16; 2],
+    normal: [u8; 2],
+    weight: [u16; 3],
+    /// `n_p · (p - centre)` as a half float: the particle's tangent plane.
+    plane: u16,
+}
+
+/// A particle found by a query, decoded.
+#[derive(Clone, Copy, Debug)]
+pub struct Neighbor {
+    pub index: u32,
+    pub dist2: f32,
+    pub dir: Vec3,
+    pub normal: Vec3,
+    pub weight: Rgb,
+    /// `c_p` as the caller's contribution function gave it.
+    pub contribution: f32,
+}
+
+/// Minimum cosine between a particle's stored normal and the query normal.
+pub const NORMAL_COS_MIN: f32 = 0.7;
+/// Largest distance of the query point from a particle's tangent plane, as a fraction of the
+/// maximum query distance.
+pub const PLANE_FRACTION: f32 = 0.25;
+
+pub struct ParticleMap {
+    pub kind: MapKind,
+    tree: Option<kiddo::ImmutableKdTree<f32, 3>>,
+    records: Vec<Record>,
+    /// Stored weights are `weight / scale` in half precision.
+    scale: f32,
+    /// Plane offsets are relative to this point (the particles' bounding-box centre), so
+    /// their magnitude stays within the scene's size.
+    centre: Vec3,
+    pub build_time: Duration,
+}
+
+// ---- Encodings ----
+
+/// Signed f32 to binary16 bits (sign bit and [`f32_to_f16`] of the magnitude).
+pub fn f32_to_f16_signed(x: f32) -> u16 {
+    if x < 0.0 { 0x8000 | f32_to_f16(-x) } else { f32_to_f16(x) }
+}
+
+/// Binary16 bits with a sign to f32.
+pub fn f16_to_f32_signed(h: u16) -> f32 {
+    let m = f16_to_f32(h & 0x7fff);
+    if h & 0x8000 != 0 { -m } else { m }
+}
+
+/// f32 to IEEE 754 binary16 bits, round to nearest even; saturates at the largest finite
+/// half, flushes below the smallest subnormal to zero. Negative and NaN inputs become 0.
+pub fn f32_to_f16(x: f32) -> u16 {
+    if !(x > 0.0) {
+        return 0;
+    }
+    if x >= 65504.0 {
+        return 0x7bff;
+    }
+    let bits = x.to_bits();
+    let exp = ((bits >> 23) & 0xff) as i32 - 127 + 15;
+    let mant = bits & 0x7f_ffff;
+    if exp >= 1 {
+        // Normal: keep 10 mantissa bits, round to nearest even.
+        let mut h = ((exp as u32) << 10) | (mant >> 13);
+        let rest = mant & 0x1fff;
+        if rest > 0x1000 || (rest == 0x1000 && (h & 1) == 1) {
+            h += 1;
+        }
+        h.min(0x7bff) as u16
+    } else if exp >= -10 {
+        // Subnormal half.
+        let m = mant | 0x80_0000;
+        let shift = (14 - exp) as u32;
+        let mut h = m >> shift;
+        let rest = m & ((1 << shift) - 1);
+        let half = 1 << (shift - 1);
+        if rest > half || (rest == half && (h & 1) == 1) {
+            h += 1;
+        }
+        h as u16
+    } else {
+        0
+    }
+}
+
+/// IEEE 754 binary16 bits to f32 (finite values only, as [`f32_to_f16`] writes).
+pub fn f16_to_f32(h: u16) -> f32 {
+    let exp = ((h >> 10) & 0x1f) as i32;
+    let mant = (h & 0x3ff) as f32;
+    if exp == 0 {
+        mant * (1.0 / 16_777_216.0) // 2^-24
+    } else {
+        (1.0 + mant / 1024.0) * (2.0f32).powi(exp - 15)
+    }
+}
+
+/// Octahedral mapping of a unit vector to `[-1, 1]²` (Cigolle et al. 2014).
+fn oct_encode(v: Vec3) -> Vec2 {
+    let l1 = v.x.abs() + v.y.abs() + v.z.abs();
+    let p = Vec2::new(v.x, v.y) / l1;
+    if v.z < 0.0 {
+        Vec2::new((1.0 - p.y.abs()) * p.x.signum(), (1.0 - p.x.abs()) * p.y.signum())
+    } else {
+        p
+    }
+}
+
+fn oct_decode(p: Vec2) -> Vec3 {
+    let z = 1.0 - p.x.abs() - p.y.abs();
+    let (x, y) = if z < 0.0 {
+        ((1.0 - p.y.abs()) * p.x.signum(), (1.0 - p.x.abs()) * p.y.signum())
+    } else {
+        (p.x, p.y)
+    };
+    Vec3::new(x, y, z).normalize()
+}
+
+fn quantize(x: f32, levels: f32) -> f32 {
+    ((x.clamp(-1.0, 1.0) * 0.5 + 0.5) * levels).round()
+}
+
+fn dequantize(q: f32, levels: f32) -> f32 {
+    q / levels * 2.0 - 1.0
+}
+
+/// A unit direction in 2 x 16 bits (angular error below 0.01°).
+pub fn encode_dir16(v: Vec3) -> [u16; 2] {
+    let p = oct_encode(v);
+    [quantize(p.x, 65535.0) as u16, quantize(p.y, 65535.0) as u16]
+}
+
+pub fn decode_dir16(e: [u16; 2]) -> Vec3 {
+    oct_decode(Vec2::new(dequantize(e[0] as f32, 65535.0), dequantize(e[1] as f32, 65535.0)))
+}
+
+/// A unit direction in 2 x 8 bits (angular error about 1°): enough for the normal test.
+fn encode_dir8(v: Vec3) -> [u8; 2] {
+    let p = oct_encode(v);
+    [quantize(p.x, 255.0) as u8, quantize(p.y, 255.0) as u8]
+}
+
+fn decode_dir8(e: [u8; 2]) -> Vec3 {
+    oct_decode(Vec2::new(dequantize(e[0] as f32, 255.0), dequantize(e[1] as f32, 255.0)))
+}
+
+impl ParticleMap {
+    /// Builds a map; particles with a non-finite or non-positive weight are dropped.
+    pub fn build(kind: MapKind, particles: &[ParticleInput]) -> Self {
+        let start = Instant::now();
+        let valid: Vec<&ParticleInput> = particles
+            .iter()
+            .filter(|p| p.position.is_finite() && p.weight.is_finite() && p.weight.max_element() > 0.0 && p.weight.min_element() >= 0.0)
+            .collect();
+        let max_w = valid.iter().map(|p| p.weight.max_element()).fold(0.0f32, f32::max);
+        let (lo, hi) = valid.iter().fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(lo, hi), p| {
+            (lo.min(p.position), hi.max(p.position))
+        });
+        let centre = if valid.is_empty() { Vec3::ZERO } else { 0.5 * (lo + hi) };
+        // The largest weight maps to 2^15, far below the half range's 65504.
+        let scale = if max_w > 0.0 { max_w / 32768.0 } else { 1.0 };
+        let records: Vec<Record> = valid
+            .iter()
+            .map(|p| Record {
+                dir: encode_dir16(p.dir),
+                normal: encode_dir8(p.normal),
+                weight: [f32_to_f16(p.weight.x / scale), f32_to_f16(p.weight.y / scale), f32_to_f16(p.weight.z / scale)],
+                plane: f32_to_f16_signed(p.normal.dot(p.position - centre)),
+            })
+            .collect();
+        let points: Vec<[f32; 3]> = valid.iter().map(|p| p.position.to_array()).collect();
+        let tree = if points.is_empty() {
+            None
+        } else {
+            kiddo::ImmutableKdTree::<f32, 3>::new_from_slice_parallel(&points).ok()
+        };
+        ParticleMap { kind, tree, records, scale, centre, build_time: start.elapsed() }
+    }
+
+    pub fn len(&self) -> usize {
+        self.records.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.records.is_empty()
+    }
+
+    /// Bytes per particle of the compact record (the tree adds its own; see
+    /// `tests/maps.rs` and `footprint maps`, which measure the whole map).
+    pub const RECORD_BYTES: usize = std::mem::size_of::<Record>();
+
+    /// The decoded particle `i` (weight back at full scale).
+    pub fn get(&self, i: u32) -> (Vec3, Vec3, Rgb) {
+        let r = &self.records[i as usize];
+        let w = Rgb::new(f16_to_f32(r.weight[0]), f16_to_f32(r.weight[1]), f16_to_f32(r.weight[2])) * self.scale;
+        (decode_dir16(r.dir), decode_dir8(r.normal), w)
+    }
+
+    /// Distance of `x` from particle `i`'s tangent plane (as stored, in half precision).
+    pub fn plane_distance(&self, i: u32, x: Vec3) -> f32 {
+        let (_, normal, _) = self.get(i);
+        (normal.dot(x - self.centre) - f16_to_f32_signed(self.records[i as usize].plane)).abs()
+    }
+
+    /// The `k` nearest particles to `x` within `max_dist` that face the query normal `n`
+    /// (oriented toward the side the query comes from), lie near its tangent plane and have
+    /// a positive `contribution`. Writes them to `out` (nearest first) and returns how many.
+    pub fn query(
+        &self,
+        x: Vec3,
+        n: Vec3,
+        k: usize,
+        max_dist: f32,
+        mut contribution: impl FnMut(&Neighbor) -> f32,
+        out: &mut Vec<Neighbor>,
+    ) -> usize {
+        out.clear();
+        let Some(tree) = &self.tree else { return 0 };
+        if k == 0 || !(max_dist > 0.0) {
+            return 0;
+        }
+        let plane = PLANE_FRACTION * max_dist;
+        let r2 = max_dist * max_dist;
+        let q = x.to_array();
+        // Rules that need no caller: facing the same way, on the same plane.
+        let xc = x - self.centre;
+        let admissible = |i: u32| -> Option<(Vec3, Vec3, Rgb)> {
+            // Cheapest test first: most rejected particles fail the normal test.
+            let r = &self.records[i as usize];
+            let normal = decode_dir8(r.normal);
+            if normal.dot(n) < NORMAL_COS_MIN {
+                return None;
+            }
+            if (normal.dot(xc) - f16_to_f32_signed(r.plane)).abs() > plane {
+                return None;
+            }
+            let (dir, _, weight) = self.get(i);
+            Some((dir, normal, weight))
+        };
+        let mut consider = |i: u32, dist2: f32, out: &mut Vec<Neighbor>| {
+            let Some((dir, normal, weight)) = admissible(i) else { return };
+            let mut cand = Neighbor { index: i, dist2, dir, normal, weight, contribution: 0.0 };
+            let c = contribution(&cand);
+            if c > 0.0 && c.is_finite() {
+                cand.contribution = c;
+                out.push(cand);
+            }
+        };
+        // First try: the 2k nearest usually hold k admissible ones.
+        let k_search = k.saturating_mul(2).max(8).min(self.records.len());
+        let found = tree.query(&q).nearest_n::<SquaredEuclidean<f32>>(NonZeroUsize::new(k_search).unwrap()).within(r2).execute();
+        for nb in &found {
+            consider(nb.item, nb.distance, out);
+            if out.len() == k {
+                return k;
+            }
+        }
+        if found.len() < k_search {
+            return out.len(); // every particle within the radius was examined
+        }
+        // Many excluded neighbours (a corner, the back of a wall): examine everything within
+        // the radius once, unsorted, and keep the k nearest admissible.
+        out.clear();
+        let all = tree.query(&q).within::<SquaredEuclidean<f32>>(r2).unsorted().execute();
+        for nb in &all {
+            consider(nb.item, nb.distance, out);
+        }
+        if out.len() > k {
+            out.select_nth_unstable_by(k - 1, |a, b| a.dist2.total_cmp(&b.dist2));
+            out.truncate(k);
+        }
+        out.sort_unstable_by(|a, b| a.dist2.total_cmp(&b.dist2).then(a.index.cmp(&b.index)));
+        out.len()
+    }
+}
