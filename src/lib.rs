@@ -9,10 +9,13 @@
 pub mod bsdf;
 pub mod bvh;
 pub mod camera;
+pub mod direction_sampler;
 pub mod effects;
 pub mod error;
 pub mod film;
+pub mod footprint_sampler;
 pub mod geometry;
+pub mod grid_sampler;
 pub mod image_io;
 pub mod light;
 pub mod loader;

@@ -11,8 +11,8 @@
 use crate::geometry::TriangleGeom;
 use crate::math::{Frame, PI, Rgb, luminance};
 use crate::sampling::{
-    cosine_hemisphere_pdf, sample_cosine_hemisphere, sample_uniform_sphere, sample_uniform_triangle,
-    uniform_sphere_pdf,
+    cosine_hemisphere_pdf, sample_cosine_hemisphere, sample_uniform_sphere,
+    sample_uniform_triangle, uniform_sphere_pdf,
 };
 use glam::{Vec2, Vec3};
 
@@ -270,7 +270,13 @@ impl Light {
                 pdf_dir: uniform_sphere_pdf(),
                 cos_light: 1.0,
             }),
-            Light::Spot { position, frame, cos_inner, cos_outer, .. } => {
+            Light::Spot {
+                position,
+                frame,
+                cos_inner,
+                cos_outer,
+                ..
+            } => {
                 let cos_t = Self::sample_spot_cos(u_dir.x, *cos_inner, *cos_outer);
                 let sin_t = crate::math::safe_sqrt(1.0 - cos_t * cos_t);
                 let phi = 2.0 * PI * u_dir.y;
@@ -300,7 +306,12 @@ impl Light {
         match self {
             Light::Area { n, .. } => cosine_hemisphere_pdf(dir.dot(*n)),
             Light::Point { .. } => uniform_sphere_pdf(),
-            Light::Spot { frame, cos_inner, cos_outer, .. } => {
+            Light::Spot {
+                frame,
+                cos_inner,
+                cos_outer,
+                ..
+            } => {
                 // Proportional to the falloff: falloff / (2π ∫ falloff d(cos θ)).
                 let norm = (1.0 - cos_inner) + 0.5 * (cos_inner - cos_outer);
                 Self::spot_falloff(dir.dot(frame.z), *cos_inner, *cos_outer) / (2.0 * PI * norm)

@@ -313,11 +313,14 @@ fn build_scene(path: &Path, dir: &Path, file: SceneFile) -> Result<Scene> {
     if let Some(v) = m.soft_glossy_max {
         maps.soft_glossy_max = v;
     }
-    maps.validate().map_err(|e| Error::invalid(path, format!("maps.{e}")))?;
+    maps.validate()
+        .map_err(|e| Error::invalid(path, format!("maps.{e}")))?;
 
     stats.triangles = triangles.len();
-    let mut scene = Scene::new(camera, triangles, shading, materials, textures, lights, settings, stats)
-        .map_err(|m| Error::invalid(path, m))?;
+    let mut scene = Scene::new(
+        camera, triangles, shading, materials, textures, lights, settings, stats,
+    )
+    .map_err(|m| Error::invalid(path, m))?;
     scene.maps = maps;
     Ok(scene)
 }

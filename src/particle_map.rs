@@ -104,7 +104,11 @@ pub struct ParticleMap {
 
 /// Signed f32 to binary16 bits (sign bit and [`f32_to_f16`] of the magnitude).
 pub fn f32_to_f16_signed(x: f32) -> u16 {
-    if x < 0.0 { 0x8000 | f32_to_f16(-x) } else { f32_to_f16(x) }
+    if x < 0.0 {
+        0x8000 | f32_to_f16(-x)
+    } else {
+        f32_to_f16(x)
+    }
 }
 
 /// Binary16 bits with a sign to f32.
@@ -165,7 +169,10 @@ fn oct_encode(v: Vec3) -> Vec2 {
     let l1 = v.x.abs() + v.y.abs() + v.z.abs();
     let p = Vec2::new(v.x, v.y) / l1;
     if v.z < 0.0 {
-        Vec2::new((1.0 - p.y.abs()) * p.x.signum(), (1.0 - p.x.abs()) * p.y.signum())
+        Vec2::new(
+            (1.0 - p.y.abs()) * p.x.signum(),
+            (1.0 - p.x.abs()) * p.y.signum(),
+        )
     } else {
         p
     }
@@ -174,7 +181,10 @@ fn oct_encode(v: Vec3) -> Vec2 {
 fn oct_decode(p: Vec2) -> Vec3 {
     let z = 1.0 - p.x.abs() - p.y.abs();
     let (x, y) = if z < 0.0 {
-        ((1.0 - p.y.abs()) * p.x.signum(), (1.0 - p.x.abs()) * p.y.signum())
+        (
+            (1.0 - p.y.abs()) * p.x.signum(),
+            (1.0 - p.x.abs()) * p.y.signum(),
+        )
     } else {
         (p.x, p.y)
     };
@@ -196,7 +206,10 @@ pub fn encode_dir16(v: Vec3) -> [u16; 2] {
 }
 
 pub fn decode_dir16(e: [u16; 2]) -> Vec3 {
-    oct_decode(Vec2::new(dequantize(e[0] as f32, 65535.0), dequantize(e[1] as f32, 65535.0)))
+    oct_decode(Vec2::new(
+        dequantize(e[0] as f32, 65535.0),
+        dequantize(e[1] as f32, 65535.0),
+    ))
 }
 
 /// A unit direction in 2 x 8 bits (angular error about 1°): enough for the normal test.
@@ -206,7 +219,10 @@ fn encode_dir8(v: Vec3) -> [u8; 2] {
 }
 
 fn decode_dir8(e: [u8; 2]) -> Vec3 {
-    oct_decode(Vec2::new(dequantize(e[0] as f32, 255.0), dequantize(e[1] as f32, 255.0)))
+    oct_decode(Vec2::new(
+        dequantize(e[0] as f32, 255.0),
+        dequantize(e[1] as f32, 255.0),
+    ))
 }
 
 impl ParticleMap {
@@ -215,13 +231,26 @@ impl ParticleMap {
         let start = Instant::now();
         let valid: Vec<&ParticleInput> = particles
             .iter()
-            .filter(|p| p.position.is_finite() && p.weight.is_finite() && p.weight.max_element() > 0.0 && p.weight.min_element() >= 0.0)
+            .filter(|p| {
+                p.position.is_finite()
+                    && p.weight.is_finite()
+                    && p.weight.max_element() > 0.0
+                    && p.weight.min_element() >= 0.0
+            })
             .collect();
-        let max_w = valid.iter().map(|p| p.weight.max_element()).fold(0.0f32, f32::max);
-        let (lo, hi) = valid.iter().fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(lo, hi), p| {
-            (lo.min(p.position), hi.max(p.position))
-        });
-        let centre = if valid.is_empty() { Vec3::ZERO } else { 0.5 * (lo + hi) };
+        let max_w = valid
+            .iter()
+            .map(|p| p.weight.max_element())
+            .fold(0.0f32, f32::max);
+        let (lo, hi) = valid.iter().fold(
+            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+            |(lo, hi), p| (lo.min(p.position), hi.max(p.position)),
+        );
+        let centre = if valid.is_empty() {
+            Vec3::ZERO
+        } else {
+            0.5 * (lo + hi)
+        };
         // The largest weight maps to 2^15, far below the half range's 65504.
         let scale = if max_w > 0.0 { max_w / 32768.0 } else { 1.0 };
         let records: Vec<Record> = valid
@@ -229,7 +258,11 @@ impl ParticleMap {
             .map(|p| Record {
                 dir: encode_dir16(p.dir),
                 normal: encode_dir8(p.normal),
-                weight: [f32_to_f16(p.weight.x / scale), f32_to_f16(p.weight.y / scale), f32_to_f16(p.weight.z / scale)],
+                weight: [
+                    f32_to_f16(p.weight.x / scale),
+                    f32_to_f16(p.weight.y / scale),
+                    f32_to_f16(p.weight.z / scale),
+                ],
                 plane: f32_to_f16_signed(p.normal.dot(p.position - centre)),
             })
             .collect();
@@ -239,7 +272,14 @@ impl ParticleMap {
         } else {
             kiddo::ImmutableKdTree::<f32, 3>::new_from_slice_parallel(&points).ok()
         };
-        ParticleMap { kind, tree, records, scale, centre, build_time: start.elapsed() }
+        ParticleMap {
+            kind,
+            tree,
+            records,
+            scale,
+            centre,
+            build_time: start.elapsed(),
+        }
     }
 
     pub fn len(&self) -> usize {
@@ -257,7 +297,11 @@ impl ParticleMap {
     /// The decoded particle `i` (weight back at full scale).
     pub fn get(&self, i: u32) -> (Vec3, Vec3, Rgb) {
         let r = &self.records[i as usize];
-        let w = Rgb::new(f16_to_f32(r.weight[0]), f16_to_f32(r.weight[1]), f16_to_f32(r.weight[2])) * self.scale;
+        let w = Rgb::new(
+            f16_to_f32(r.weight[0]),
+            f16_to_f32(r.weight[1]),
+            f16_to_f32(r.weight[2]),
+        ) * self.scale;
         (decode_dir16(r.dir), decode_dir8(r.normal), w)
     }
 
@@ -303,8 +347,17 @@ impl ParticleMap {
             Some((dir, normal, weight))
         };
         let mut consider = |i: u32, dist2: f32, out: &mut Vec<Neighbor>| {
-            let Some((dir, normal, weight)) = admissible(i) else { return };
-            let mut cand = Neighbor { index: i, dist2, dir, normal, weight, contribution: 0.0 };
+            let Some((dir, normal, weight)) = admissible(i) else {
+                return;
+            };
+            let mut cand = Neighbor {
+                index: i,
+                dist2,
+                dir,
+                normal,
+                weight,
+                contribution: 0.0,
+            };
             let c = contribution(&cand);
             if c > 0.0 && c.is_finite() {
                 cand.contribution = c;
@@ -313,7 +366,11 @@ impl ParticleMap {
         };
         // First try: the 2k nearest usually hold k admissible ones.
         let k_search = k.saturating_mul(2).max(8).min(self.records.len());
-        let found = tree.query(&q).nearest_n::<SquaredEuclidean<f32>>(NonZeroUsize::new(k_search).unwrap()).within(r2).execute();
+        let found = tree
+            .query(&q)
+            .nearest_n::<SquaredEuclidean<f32>>(NonZeroUsize::new(k_search).unwrap())
+            .within(r2)
+            .execute();
         for nb in &found {
             consider(nb.item, nb.distance, out);
             if out.len() == k {
@@ -326,7 +383,11 @@ impl ParticleMap {
         // Many excluded neighbours (a corner, the back of a wall): examine everything within
         // the radius once, unsorted, and keep the k nearest admissible.
         out.clear();
-        let all = tree.query(&q).within::<SquaredEuclidean<f32>>(r2).unsorted().execute();
+        let all = tree
+            .query(&q)
+            .within::<SquaredEuclidean<f32>>(r2)
+            .unsorted()
+            .execute();
         for nb in &all {
             consider(nb.item, nb.distance, out);
         }

@@ -58,7 +58,12 @@ pub struct MapSettings {
 
 impl Default for MapSettings {
     fn default() -> Self {
-        MapSettings { photons: 200_000, importons: 200_000, max_dist: None, soft_glossy_max: 100.0 }
+        MapSettings {
+            photons: 200_000,
+            importons: 200_000,
+            max_dist: None,
+            soft_glossy_max: 100.0,
+        }
     }
 }
 
@@ -73,7 +78,9 @@ impl MapSettings {
                 return Err(format!("{name} must be at least 1"));
             }
             if n > MAX_MAP_PATHS {
-                return Err(format!("{name} = {n} is absurd: at most {MAX_MAP_PATHS} paths"));
+                return Err(format!(
+                    "{name} = {n} is absurd: at most {MAX_MAP_PATHS} paths"
+                ));
             }
         }
         if let Some(d) = self.max_dist {
@@ -82,7 +89,10 @@ impl MapSettings {
             }
         }
         if !(self.soft_glossy_max.is_finite() && self.soft_glossy_max >= 0.0) {
-            return Err(format!("soft_glossy_max must be finite and >= 0, got {}", self.soft_glossy_max));
+            return Err(format!(
+                "soft_glossy_max must be finite and >= 0, got {}",
+                self.soft_glossy_max
+            ));
         }
         Ok(())
     }
@@ -261,7 +271,9 @@ impl Scene {
 
     /// The maximum particle query distance: the setting, or 5% of the bounding-box diagonal.
     pub fn map_max_dist(&self) -> f32 {
-        self.maps.max_dist.unwrap_or(0.05 * (self.bounds.1 - self.bounds.0).length())
+        self.maps
+            .max_dist
+            .unwrap_or(0.05 * (self.bounds.1 - self.bounds.0).length())
     }
 
     /// Probability of choosing light `i`.

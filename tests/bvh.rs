@@ -114,9 +114,18 @@ fn surfaces_close_to_the_origin_are_hit() {
 fn axis_aligned_rays_with_negative_zeros_hit() {
     let scene = load_scene(&scene_path("cornell")).unwrap();
     let o = glam::Vec3::new(4.2, 1.0, 1.2);
-    for (d, what) in [(-glam::Vec3::Y, "floor"), (glam::Vec3::Y, "ceiling"), (glam::Vec3::Z, "back wall"), (-glam::Vec3::X, "green wall"), (glam::Vec3::X, "red wall")] {
+    for (d, what) in [
+        (-glam::Vec3::Y, "floor"),
+        (glam::Vec3::Y, "ceiling"),
+        (glam::Vec3::Z, "back wall"),
+        (-glam::Vec3::X, "green wall"),
+        (glam::Vec3::X, "red wall"),
+    ] {
         let h = scene.bvh.intersect(o, d, f32::INFINITY);
         assert!(h.is_some(), "{what}: missed along {d:?}");
-        assert!(!scene.bvh.unoccluded(o, d, 100.0), "{what}: shadow ray passed");
+        assert!(
+            !scene.bvh.unoccluded(o, d, 100.0),
+            "{what}: shadow ray passed"
+        );
     }
 }

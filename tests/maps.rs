@@ -11,7 +11,9 @@ use footprint::Rgb;
 use footprint::geometry::offset_ray_origin;
 use footprint::loader::load_scene;
 use footprint::math::{Frame, PI};
-use footprint::particle_map::{MapKind, NORMAL_COS_MIN, PLANE_FRACTION, ParticleInput, ParticleMap, f16_to_f32, f32_to_f16};
+use footprint::particle_map::{
+    MapKind, NORMAL_COS_MIN, PLANE_FRACTION, ParticleInput, ParticleMap, f16_to_f32, f32_to_f16,
+};
 use footprint::rng::Rng;
 use footprint::sampling::sample_cosine_hemisphere;
 use footprint::scene::Scene;
@@ -50,7 +52,11 @@ fn random_particles(n: usize, seed: u64) -> Vec<ParticleInput> {
             let f = Frame::from_z(normal);
             // Points scattered around four planes through the origin region, with some offset
             // off the plane, so that the plane and normal rules both matter.
-            let p = f.to_world(Vec3::new(rng.uniform() * 2.0 - 1.0, rng.uniform() * 2.0 - 1.0, (rng.uniform() - 0.5) * 0.2));
+            let p = f.to_world(Vec3::new(
+                rng.uniform() * 2.0 - 1.0,
+                rng.uniform() * 2.0 - 1.0,
+                (rng.uniform() - 0.5) * 0.2,
+            ));
             ParticleInput {
                 position: p,
                 dir: f.to_world(sample_cosine_hemisphere(rng.uniform2())),
@@ -87,14 +93,31 @@ fn knn_query_matches_brute_force_with_exclusions() {
     let mut out = Vec::new();
     let mut fewer = 0;
     for q in 0..400 {
-        let x = Vec3::new(rng.uniform() * 2.0 - 1.0, rng.uniform() * 0.4 - 0.2, rng.uniform() * 2.0 - 1.0);
+        let x = Vec3::new(
+            rng.uniform() * 2.0 - 1.0,
+            rng.uniform() * 0.4 - 0.2,
+            rng.uniform() * 2.0 - 1.0,
+        );
         let n = if q % 2 == 0 { Vec3::Y } else { -Vec3::Y };
         let k = [1, 10, 50, 200][q % 4];
         let max_dist = [0.05, 0.2, 0.6][q % 3];
         // Contribution: zero for particles coming from "below" some tilted plane.
         let tilt = Vec3::new(0.3, 1.0, 0.2).normalize();
-        let contribution = |dir: Vec3, w: Rgb| if dir.dot(tilt) > -0.2 { w.x + w.y + w.z } else { 0.0 };
-        let got = map.query(x, n, k, max_dist, |nb| contribution(nb.dir, nb.weight), &mut out);
+        let contribution = |dir: Vec3, w: Rgb| {
+            if dir.dot(tilt) > -0.2 {
+                w.x + w.y + w.z
+            } else {
+                0.0
+            }
+        };
+        let got = map.query(
+            x,
+            n,
+            k,
+            max_dist,
+            |nb| contribution(nb.dir, nb.weight),
+            &mut out,
+        );
         let mut brute: Vec<(f32, u32)> = (0..particles.len() as u32)
             .filter_map(|i| {
                 let p = &particles[i as usize];
@@ -120,7 +143,10 @@ fn knn_query_matches_brute_force_with_exclusions() {
             fewer += 1;
         }
     }
-    assert!(fewer > 10 && fewer < 390, "the cases should include both full and short answers ({fewer})");
+    assert!(
+        fewer > 10 && fewer < 390,
+        "the cases should include both full and short answers ({fewer})"
+    );
 }
 
 /// At most 32 bytes per particle, kd-tree included, measured by a counting allocator. The
@@ -130,13 +156,26 @@ fn knn_query_matches_brute_force_with_exclusions() {
 fn memory_is_at_most_32_bytes_per_particle() {
     if std::env::var_os("FOOTPRINT_MEMORY_CHILD").is_none() {
         let out = std::process::Command::new(std::env::current_exe().unwrap())
-            .args(["--exact", "memory_is_at_most_32_bytes_per_particle", "--nocapture", "--test-threads", "1"])
+            .args([
+                "--exact",
+                "memory_is_at_most_32_bytes_per_particle",
+                "--nocapture",
+                "--test-threads",
+                "1",
+            ])
             .env("FOOTPRINT_MEMORY_CHILD", "1")
             .output()
             .unwrap();
-        let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+        let text = format!(
+            "{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        );
         eprintln!("{text}");
-        assert!(out.status.success() && text.contains("bytes per particle"), "child failed");
+        assert!(
+            out.status.success() && text.contains("bytes per particle"),
+            "child failed"
+        );
         return;
     }
     for n in [100_000usize, 1_000_000] {
@@ -147,13 +186,21 @@ fn memory_is_at_most_32_bytes_per_particle() {
         let bytes = after.saturating_sub(before) as f64 / map.len() as f64;
         eprintln!("{n} particles: {bytes:.2} bytes per particle");
         assert!(bytes <= 32.0, "{bytes} bytes per particle");
-        assert!(bytes >= ParticleMap::RECORD_BYTES as f64 + 12.0, "the measurement misses the tree ({bytes})");
+        assert!(
+            bytes >= ParticleMap::RECORD_BYTES as f64 + 12.0,
+            "the measurement misses the tree ({bytes})"
+        );
         drop(map);
     }
 }
 
 fn pass_settings(paths: usize, seed: u64) -> PassSettings {
-    PassSettings { paths, max_depth: 16, seed, soft_glossy_max: 100.0 }
+    PassSettings {
+        paths,
+        max_depth: 16,
+        seed,
+        soft_glossy_max: 100.0,
+    }
 }
 
 /// The diffuse albedo of the surface a particle lies on, found by a ray down its normal
@@ -182,23 +229,45 @@ fn light_pass_conserves_flux_on_cornell() {
     let out = light_pass(&scene, &pass_settings(200_000, 5));
     let s = &out.stats;
     // Sums in double precision: 10^5 single-precision additions drift by ~1e-3.
-    let sum = |it: &mut dyn Iterator<Item = Rgb>| it.fold(glam::DVec3::ZERO, |a, w| a + w.as_dvec3());
-    let first = sum(&mut out.particles.iter().filter(|p| p.depth == 1).map(|p| p.weight));
-    let second = sum(&mut out.particles.iter().filter(|p| p.depth == 2).map(|p| p.weight));
-    let reflected = sum(&mut out.particles.iter().filter(|p| p.depth == 1).map(|p| p.weight * albedo_at(&scene, p)));
+    let sum =
+        |it: &mut dyn Iterator<Item = Rgb>| it.fold(glam::DVec3::ZERO, |a, w| a + w.as_dvec3());
+    let first = sum(&mut out
+        .particles
+        .iter()
+        .filter(|p| p.depth == 1)
+        .map(|p| p.weight));
+    let second = sum(&mut out
+        .particles
+        .iter()
+        .filter(|p| p.depth == 2)
+        .map(|p| p.weight));
+    let reflected = sum(&mut out
+        .particles
+        .iter()
+        .filter(|p| p.depth == 1)
+        .map(|p| p.weight * albedo_at(&scene, p)));
     let emitted = s.emitted.as_dvec3();
     let escaped0 = s.escaped.first().copied().unwrap_or_default().as_dvec3();
     let escaped1 = s.escaped.get(1).copied().unwrap_or_default().as_dvec3();
-    eprintln!("emitted {emitted}, first {first}, escaped {escaped0}; reflected {reflected}, second {second}, escaped {escaped1}");
-    let rel = |a: glam::DVec3, b: glam::DVec3| ((a - b).abs() / b.max(glam::DVec3::splat(1e-9))).max_element();
+    eprintln!(
+        "emitted {emitted}, first {first}, escaped {escaped0}; reflected {reflected}, second {second}, escaped {escaped1}"
+    );
+    let rel = |a: glam::DVec3, b: glam::DVec3| {
+        ((a - b).abs() / b.max(glam::DVec3::splat(1e-9))).max_element()
+    };
     assert!(rel(first + escaped0, emitted) < 1e-3, "first hits");
-    assert!(escaped0.max_element() > 0.0 && escaped1.max_element() > 0.0, "cornell's open front lets some flux out");
+    assert!(
+        escaped0.max_element() > 0.0 && escaped1.max_element() > 0.0,
+        "cornell's open front lets some flux out"
+    );
     assert!(rel(second + escaped1, reflected) < 1e-3, "second hits");
 }
 
 /// A point on the surface seen from `from` along `dir`, and its normal toward `from`.
 fn surface_point(scene: &Scene, from: Vec3, dir: Vec3) -> (Vec3, Vec3) {
-    let h = scene.intersect(from, dir.normalize(), f32::INFINITY).unwrap_or_else(|| panic!("no surface from {from} along {dir}"));
+    let h = scene
+        .intersect(from, dir.normalize(), f32::INFINITY)
+        .unwrap_or_else(|| panic!("no surface from {from} along {dir}"));
     let n = if h.ng.dot(dir) < 0.0 { h.ng } else { -h.ng };
     (h.p, n)
 }
@@ -215,10 +284,10 @@ fn photon_irradiance_agrees_with_path_tracing_on_cornell() {
     let scene = load_scene(&scene_path("cornell")).unwrap();
     let centre = Vec3::new(2.78, 2.74, 2.8);
     let points = [
-        surface_point(&scene, Vec3::new(4.2, 1.0, 1.2), -Vec3::Y),               // floor, front right
-        surface_point(&scene, Vec3::new(1.2, 3.5, 2.0), Vec3::Z),                // back wall, left
-        surface_point(&scene, Vec3::new(4.0, 3.0, 1.5), Vec3::X),                // red wall
-        surface_point(&scene, Vec3::new(1.0, 4.0, 1.0), Vec3::Y),                // ceiling, front
+        surface_point(&scene, Vec3::new(4.2, 1.0, 1.2), -Vec3::Y), // floor, front right
+        surface_point(&scene, Vec3::new(1.2, 3.5, 2.0), Vec3::Z),  // back wall, left
+        surface_point(&scene, Vec3::new(4.0, 3.0, 1.5), Vec3::X),  // red wall
+        surface_point(&scene, Vec3::new(1.0, 4.0, 1.0), Vec3::Y),  // ceiling, front
     ];
     let _ = centre;
     let r = 0.2f32;
@@ -267,8 +336,13 @@ fn photon_irradiance_agrees_with_path_tracing_on_cornell() {
         let (em, ese) = mean_stderr(&xs);
         let se = (pse * pse + ese * ese).sqrt();
         let t = (pm - em).abs() / se;
-        eprintln!("point {i}: photons {pm:.4} ± {pse:.4}, path traced {em:.4} ± {ese:.4}, |t| {t:.2} (critical {crit:.2})");
-        assert!(t <= crit, "point {i}: photon irradiance {pm} vs path-traced {em}");
+        eprintln!(
+            "point {i}: photons {pm:.4} ± {pse:.4}, path traced {em:.4} ± {ese:.4}, |t| {t:.2} (critical {crit:.2})"
+        );
+        assert!(
+            t <= crit,
+            "point {i}: photon irradiance {pm} vs path-traced {em}"
+        );
     }
 }
 
@@ -281,9 +355,21 @@ fn importon_density_matches_camera_importance_on_cornell() {
     let scene = load_scene(&scene_path("cornell")).unwrap();
     let cam = &scene.camera;
     let points = [
-        surface_point(&scene, cam.position, Vec3::new(2.78, 2.74, 5.59) - cam.position),
-        surface_point(&scene, cam.position, Vec3::new(1.0, 4.0, 5.59) - cam.position),
-        surface_point(&scene, cam.position, Vec3::new(4.2, 0.0, 1.5) - cam.position),
+        surface_point(
+            &scene,
+            cam.position,
+            Vec3::new(2.78, 2.74, 5.59) - cam.position,
+        ),
+        surface_point(
+            &scene,
+            cam.position,
+            Vec3::new(1.0, 4.0, 5.59) - cam.position,
+        ),
+        surface_point(
+            &scene,
+            cam.position,
+            Vec3::new(4.2, 0.0, 1.5) - cam.position,
+        ),
     ];
     let r = 0.15f32;
     let batches = 16;
@@ -291,7 +377,12 @@ fn importon_density_matches_camera_importance_on_cornell() {
     let mut buf = Vec::new();
     for b in 0..batches {
         let out = view_pass(&scene, &pass_settings(100_000, 200 + b));
-        let first: Vec<ParticleInput> = out.particles.iter().filter(|p| p.depth == 1).copied().collect();
+        let first: Vec<ParticleInput> = out
+            .particles
+            .iter()
+            .filter(|p| p.depth == 1)
+            .copied()
+            .collect();
         let map = ParticleMap::build(MapKind::Importons, &first);
         for (i, (p, n)) in points.iter().enumerate() {
             map.query(*p, *n, usize::MAX, r, |_| 1.0, &mut buf);
@@ -305,7 +396,9 @@ fn importon_density_matches_camera_importance_on_cornell() {
         let expect = (conn.we_geom * conn.dir_to_camera.dot(*n).abs()) as f64;
         let (m, se) = mean_stderr(&est[i]);
         let t = (m - expect).abs() / se;
-        eprintln!("point {i}: importons {m:.5} ± {se:.5}, camera importance {expect:.5}, |t| {t:.2}");
+        eprintln!(
+            "point {i}: importons {m:.5} ± {se:.5}, camera importance {expect:.5}, |t| {t:.2}"
+        );
         assert!(t <= crit, "point {i}: importance {m} vs {expect}");
     }
 }
@@ -323,15 +416,34 @@ fn temp_dir(name: &str) -> PathBuf {
 fn box_obj(lo: Vec3, hi: Vec3, first_vertex: usize, material: &str) -> String {
     let mut s = String::new();
     for i in 0..8 {
-        let v = Vec3::new(if i & 1 == 0 { lo.x } else { hi.x }, if i & 2 == 0 { lo.y } else { hi.y }, if i & 4 == 0 { lo.z } else { hi.z });
+        let v = Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        );
         s += &format!("v {} {} {}\n", v.x, v.y, v.z);
     }
     s += &format!("usemtl {material}\n");
     // Faces as quads (a, b, c, d) counter-clockwise seen from outside.
-    let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
     for q in quads {
         let v = |i: usize| q[i] + first_vertex;
-        s += &format!("f {} {} {}\nf {} {} {}\n", v(0), v(1), v(2), v(0), v(2), v(3));
+        s += &format!(
+            "f {} {} {}\nf {} {} {}\n",
+            v(0),
+            v(1),
+            v(2),
+            v(0),
+            v(2),
+            v(3)
+        );
     }
     s
 }
@@ -343,10 +455,23 @@ fn box_obj(lo: Vec3, hi: Vec3, first_vertex: usize, material: &str) -> String {
 fn importons_behind_coloured_glass_carry_its_colour() {
     let d = temp_dir("glass");
     let tf = Rgb::new(0.9, 0.5, 0.2);
-    let mtl = format!("newmtl glass\nKd 0 0 0\nNi 1.5\nTf {} {} {}\nillum 7\nnewmtl wall\nKd 0.6 0.6 0.6\nillum 1\n", tf.x, tf.y, tf.z);
+    let mtl = format!(
+        "newmtl glass\nKd 0 0 0\nNi 1.5\nTf {} {} {}\nillum 7\nnewmtl wall\nKd 0.6 0.6 0.6\nillum 1\n",
+        tf.x, tf.y, tf.z
+    );
     let mut obj = "mtllib m.mtl\n".to_string();
-    obj += &box_obj(Vec3::new(-0.5, -0.5, -0.05), Vec3::new(0.5, 0.5, 0.05), 1, "glass");
-    obj += &box_obj(Vec3::new(-3.0, -3.0, 2.0), Vec3::new(3.0, 3.0, 2.2), 9, "wall");
+    obj += &box_obj(
+        Vec3::new(-0.5, -0.5, -0.05),
+        Vec3::new(0.5, 0.5, 0.05),
+        1,
+        "glass",
+    );
+    obj += &box_obj(
+        Vec3::new(-3.0, -3.0, 2.0),
+        Vec3::new(3.0, 3.0, 2.2),
+        9,
+        "wall",
+    );
     std::fs::write(d.join("m.mtl"), mtl).unwrap();
     std::fs::write(d.join("g.obj"), obj).unwrap();
     let toml = "[camera]\nposition = [0.0, 0.0, -3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 40.0\nresolution = [64, 64]\n\
@@ -362,10 +487,16 @@ fn importons_behind_coloured_glass_carry_its_colour() {
         if p.specular_chain && p.depth >= 3 {
             through += 1;
             let expect = tf / tf.x;
-            assert!((ratio - expect).abs().max_element() < 2e-3, "through glass: {ratio} vs {expect}");
+            assert!(
+                (ratio - expect).abs().max_element() < 2e-3,
+                "through glass: {ratio} vs {expect}"
+            );
         } else if p.depth == 1 {
             direct += 1;
-            assert!((ratio - Rgb::ONE).abs().max_element() < 1e-5, "direct: {ratio}");
+            assert!(
+                (ratio - Rgb::ONE).abs().max_element() < 1e-5,
+                "direct: {ratio}"
+            );
         }
     }
     eprintln!("{through} importons through the pane, {direct} direct");
@@ -378,17 +509,38 @@ fn importons_behind_coloured_glass_carry_its_colour() {
 fn spot_emission_sampling_matches_its_pdf() {
     let scene = load_scene(&scene_path("desk")).unwrap();
     let light = &scene.lights[0];
-    let test = ChiSquareTest { axis: -Vec3::Y, theta_max: 1.2, res_theta: 40, res_phi: 40, samples: 1_000_000, integration_res: 6, seed: 4 };
-    let r = test.run(|rng| light.sample_le(rng.uniform2(), rng.uniform2()).map(|e| e.dir), |d| light.pdf_le_dir(d) as f64);
+    let test = ChiSquareTest {
+        axis: -Vec3::Y,
+        theta_max: 1.2,
+        res_theta: 40,
+        res_phi: 40,
+        samples: 1_000_000,
+        integration_res: 6,
+        seed: 4,
+    };
+    let r = test.run(
+        |rng| {
+            light
+                .sample_le(rng.uniform2(), rng.uniform2())
+                .map(|e| e.dir)
+        },
+        |d| light.pdf_le_dir(d) as f64,
+    );
     eprintln!("spot: chi2 {:.1} dof {} p {:.3}", r.chi2, r.dof, r.p_value);
     assert!(r.p_value > 0.01);
-    assert!((r.integral - 1.0).abs() < 1e-3, "the pdf integrates to {}", r.integral);
+    assert!(
+        (r.integral - 1.0).abs() < 1e-3,
+        "the pdf integrates to {}",
+        r.integral
+    );
     // Every photon of the spot carries the same flux: the light's power.
     let mut rng = Rng::new(1, 0, 0);
     for _ in 0..1000 {
         let e = light.sample_le(rng.uniform2(), rng.uniform2()).unwrap();
         let flux = e.le / e.pdf_dir;
-        assert!((flux - light.power_rgb()).abs().max_element() < 1e-3 * light.power_rgb().max_element());
+        assert!(
+            (flux - light.power_rgb()).abs().max_element() < 1e-3 * light.power_rgb().max_element()
+        );
     }
 }
 
@@ -396,7 +548,10 @@ fn spot_emission_sampling_matches_its_pdf() {
 #[test]
 fn bad_map_settings_are_errors() {
     let run = |args: &[&str]| {
-        let d = temp_dir(&format!("bad-{}", args.join("").replace(['-', '.', '/'], "")));
+        let d = temp_dir(&format!(
+            "bad-{}",
+            args.join("").replace(['-', '.', '/'], "")
+        ));
         let out = std::process::Command::new(env!("CARGO_BIN_EXE_footprint"))
             .arg("maps")
             .arg(scene_path("cornell"))
@@ -417,8 +572,20 @@ fn bad_map_settings_are_errors() {
     assert!(run(&["--max-dist", "-1"]).contains("--max-dist"));
     // And in the scene file.
     let d = temp_dir("bad-toml");
-    let text = std::fs::read_to_string(scene_path("cornell")).unwrap().replace("cornell.obj", &scene_path("cornell").with_file_name("cornell.obj").display().to_string());
-    std::fs::write(d.join("s.toml"), format!("{text}\n[maps]\nmax_dist = 0.0\n")).unwrap();
+    let text = std::fs::read_to_string(scene_path("cornell"))
+        .unwrap()
+        .replace(
+            "cornell.obj",
+            &scene_path("cornell")
+                .with_file_name("cornell.obj")
+                .display()
+                .to_string(),
+        );
+    std::fs::write(
+        d.join("s.toml"),
+        format!("{text}\n[maps]\nmax_dist = 0.0\n"),
+    )
+    .unwrap();
     match load_scene(&d.join("s.toml")) {
         Err(e) => assert!(e.to_string().contains("maps.max_dist"), "{e}"),
         Ok(_) => panic!("max_dist = 0 accepted"),

@@ -58,7 +58,12 @@ pub fn run(scenes: &Path, seconds: f64) -> Result<()> {
     use footprint::particle_map::{MapKind, ParticleMap};
     use footprint_integrators::passes::{PassSettings, light_pass, view_pass};
     for paths in [50_000usize, 500_000] {
-        let s = PassSettings { paths, max_depth: door.settings.max_depth, seed: 1, soft_glossy_max: door.maps.soft_glossy_max };
+        let s = PassSettings {
+            paths,
+            max_depth: door.settings.max_depth,
+            seed: 1,
+            soft_glossy_max: door.maps.soft_glossy_max,
+        };
         let pass = light_pass(&door, &s);
         let t = Instant::now();
         let map = ParticleMap::build(MapKind::Photons, &pass.particles);
@@ -71,8 +76,16 @@ pub fn run(scenes: &Path, seconds: f64) -> Result<()> {
         );
     }
     let max_dist = door.map_max_dist();
-    let s = PassSettings { paths: door.maps.photons, max_depth: door.settings.max_depth, seed: 1, soft_glossy_max: door.maps.soft_glossy_max };
-    for (kind, pass) in [(MapKind::Photons, light_pass(&door, &s)), (MapKind::Importons, view_pass(&door, &s))] {
+    let s = PassSettings {
+        paths: door.maps.photons,
+        max_depth: door.settings.max_depth,
+        seed: 1,
+        soft_glossy_max: door.maps.soft_glossy_max,
+    };
+    for (kind, pass) in [
+        (MapKind::Photons, light_pass(&door, &s)),
+        (MapKind::Importons, view_pass(&door, &s)),
+    ] {
         let map = ParticleMap::build(kind, &pass.particles);
         // Query points: where camera rays hit, the points a guided path tracer asks about.
         let points: Vec<(glam::Vec3, glam::Vec3)> = (0..4096u64)
@@ -80,7 +93,8 @@ pub fn run(scenes: &Path, seconds: f64) -> Result<()> {
                 let mut rng = Rng::new(3, 9, i);
                 let raster = rng.uniform2() * Vec2::new(cam.width as f32, cam.height as f32);
                 let d = cam.ray_dir(raster);
-                door.intersect(cam.position, d, f32::INFINITY).map(|h| (h.p, if h.ng.dot(d) < 0.0 { h.ng } else { -h.ng }))
+                door.intersect(cam.position, d, f32::INFINITY)
+                    .map(|h| (h.p, if h.ng.dot(d) < 0.0 { h.ng } else { -h.ng }))
             })
             .collect();
         let start = Instant::now();
@@ -89,7 +103,9 @@ pub fn run(scenes: &Path, seconds: f64) -> Result<()> {
         while start.elapsed().as_secs_f64() < seconds {
             let (q, f) = points
                 .par_iter()
-                .map_init(Vec::new, |buf, (p, n)| (1u64, map.query(*p, *n, 50, max_dist, |_| 1.0, buf) as u64))
+                .map_init(Vec::new, |buf, (p, n)| {
+                    (1u64, map.query(*p, *n, 50, max_dist, |_| 1.0, buf) as u64)
+                })
                 .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
             queries += q;
             found += f;

@@ -169,7 +169,8 @@ impl MapArgs {
         if let Some(v) = self.soft_glossy_max {
             m.soft_glossy_max = v;
         }
-        m.validate().map_err(|e| anyhow::anyhow!("--{}", e.replace('_', "-")))
+        m.validate()
+            .map_err(|e| anyhow::anyhow!("--{}", e.replace('_', "-")))
     }
 }
 
@@ -248,7 +249,14 @@ fn run(cli: Cli) -> Result<()> {
             });
             render_command(&scene, &sc, opts, &out, exposure, load_time.as_secs_f64())
         }
-        Command::Maps { scene, out, maps, max_depth, seed, threads } => {
+        Command::Maps {
+            scene,
+            out,
+            maps,
+            max_depth,
+            seed,
+            threads,
+        } => {
             set_threads(threads)?;
             let mut sc = load_scene(&scene)?;
             maps.apply(&mut sc)?;
@@ -268,19 +276,32 @@ fn run(cli: Cli) -> Result<()> {
     }
 }
 
-fn maps_command(scene: &Scene, out: &Path, max_depth: Option<u32>, seed: Option<u64>) -> Result<()> {
+fn maps_command(
+    scene: &Scene,
+    out: &Path,
+    max_depth: Option<u32>,
+    seed: Option<u64>,
+) -> Result<()> {
     use footprint::particle_map::MapKind;
     use footprint_integrators::maps::{build_map, picture};
     use footprint_integrators::passes::PassSettings;
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let max_depth = max_depth.unwrap_or(scene.settings.max_depth);
     let seed = seed.unwrap_or(scene.settings.seed);
-    println!("maximum query distance {:.4} (scene units)", scene.map_max_dist());
+    println!(
+        "maximum query distance {:.4} (scene units)",
+        scene.map_max_dist()
+    );
     for (kind, paths, file) in [
         (MapKind::Photons, scene.maps.photons, "photons.png"),
         (MapKind::Importons, scene.maps.importons, "importons.png"),
     ] {
-        let s = PassSettings { paths, max_depth, seed, soft_glossy_max: scene.maps.soft_glossy_max };
+        let s = PassSettings {
+            paths,
+            max_depth,
+            seed,
+            soft_glossy_max: scene.maps.soft_glossy_max,
+        };
         let built = build_map(scene, kind, &s, &heap_bytes);
         println!("{}", built.summary());
         let img = picture(scene, &built.pass.particles);

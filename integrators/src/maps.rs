@@ -38,7 +38,12 @@ impl BuiltMap {
 
 /// Runs a pass and builds its map; `measure` returns the heap bytes currently allocated
 /// (a counting allocator), so the map's own footprint is the difference around the build.
-pub fn build_map(scene: &Scene, kind: MapKind, s: &PassSettings, measure: &dyn Fn() -> Option<usize>) -> BuiltMap {
+pub fn build_map(
+    scene: &Scene,
+    kind: MapKind,
+    s: &PassSettings,
+    measure: &dyn Fn() -> Option<usize>,
+) -> BuiltMap {
     let pass = match kind {
         MapKind::Photons => light_pass(scene, s),
         MapKind::Importons => view_pass(scene, s),
@@ -57,7 +62,11 @@ pub fn build_map(scene: &Scene, kind: MapKind, s: &PassSettings, measure: &dyn F
 /// a point of its weight's colour, normalised so that the 99th-percentile particle is white.
 pub fn picture(scene: &Scene, particles: &[ParticleInput]) -> Image {
     let cam = &scene.camera;
-    let mut peak: Vec<f32> = particles.iter().map(|p| p.weight.max_element()).filter(|v| *v > 0.0).collect();
+    let mut peak: Vec<f32> = particles
+        .iter()
+        .map(|p| p.weight.max_element())
+        .filter(|v| *v > 0.0)
+        .collect();
     let norm = if peak.is_empty() {
         1.0
     } else {
@@ -89,4 +98,3 @@ pub fn picture(scene: &Scene, particles: &[ParticleInput]) -> Image {
     }
     img
 }
-

@@ -102,7 +102,11 @@ fn trace(
         let wo = -dir;
         let bsdf = scene.bsdf(&hit);
         if stores_particles(&bsdf.lobes, s.soft_glossy_max) {
-            let n = if hit.ng.dot(wo) >= 0.0 { hit.ng } else { -hit.ng };
+            let n = if hit.ng.dot(wo) >= 0.0 {
+                hit.ng
+            } else {
+                -hit.ng
+            };
             out.particles.push(ParticleInput {
                 position: hit.p,
                 dir: wo,
@@ -115,7 +119,9 @@ fn trace(
         if depth == s.max_depth {
             return;
         }
-        let Some(smp) = bsdf.sample(wo, rng.uniform(), rng.uniform2(), mode) else { return };
+        let Some(smp) = bsdf.sample(wo, rng.uniform(), rng.uniform2(), mode) else {
+            return;
+        };
         beta *= smp.weight;
         if !beta.is_finite() || beta.max_element() <= 0.0 {
             return;
@@ -133,12 +139,18 @@ fn trace(
     }
 }
 
-fn run_chunks(s: &PassSettings, path: impl Fn(usize, &mut ChunkOut) + Sync) -> (Vec<ParticleInput>, Vec<Rgb>) {
+fn run_chunks(
+    s: &PassSettings,
+    path: impl Fn(usize, &mut ChunkOut) + Sync,
+) -> (Vec<ParticleInput>, Vec<Rgb>) {
     let chunks = s.paths.div_ceil(CHUNK);
     let outs: Vec<ChunkOut> = (0..chunks)
         .into_par_iter()
         .map(|c| {
-            let mut out = ChunkOut { particles: Vec::new(), escaped: Vec::new() };
+            let mut out = ChunkOut {
+                particles: Vec::new(),
+                escaped: Vec::new(),
+            };
             for i in c * CHUNK..((c + 1) * CHUNK).min(s.paths) {
                 path(i, &mut out);
             }
@@ -168,7 +180,9 @@ pub fn light_pass(scene: &Scene, s: &PassSettings) -> PassOutput {
         let mut rng = Rng::new(s.seed, DOMAIN_LIGHT_PASS, i as u64);
         let (li, pmf) = scene.light_distribution.sample(rng.uniform());
         let light = &scene.lights[li];
-        let Some(em) = light.sample_le(rng.uniform2(), rng.uniform2()) else { return };
+        let Some(em) = light.sample_le(rng.uniform2(), rng.uniform2()) else {
+            return;
+        };
         let beta = em.le * (em.cos_light / (em.pdf_pos * em.pdf_dir * pmf) * inv_n);
         if !beta.is_finite() || beta.max_element() <= 0.0 {
             return;
@@ -177,10 +191,27 @@ pub fn light_pass(scene: &Scene, s: &PassSettings) -> PassOutput {
             Some(n) => offset_ray_origin(em.p, n),
             None => em.p,
         };
-        trace(scene, s, TransportMode::Importance, origin, em.dir, beta, &mut rng, out);
+        trace(
+            scene,
+            s,
+            TransportMode::Importance,
+            origin,
+            em.dir,
+            beta,
+            &mut rng,
+            out,
+        );
     });
     let emitted = scene.lights.iter().map(|l| l.power_rgb()).sum();
-    PassOutput { particles, stats: PassStats { paths: s.paths, emitted, escaped, time: start.elapsed() } }
+    PassOutput {
+        particles,
+        stats: PassStats {
+            paths: s.paths,
+            emitted,
+            escaped,
+            time: start.elapsed(),
+        },
+    }
 }
 
 /// The view pass: an importance map's particles.
@@ -193,7 +224,24 @@ pub fn view_pass(scene: &Scene, s: &PassSettings) -> PassOutput {
         let mut rng = Rng::new(s.seed, DOMAIN_VIEW_PASS, i as u64);
         let raster = rng.uniform2() * size;
         let dir = cam.ray_dir(raster);
-        trace(scene, s, TransportMode::Radiance, cam.position, dir, Rgb::splat(inv_n), &mut rng, out);
+        trace(
+            scene,
+            s,
+            TransportMode::Radiance,
+            cam.position,
+            dir,
+            Rgb::splat(inv_n),
+            &mut rng,
+            out,
+        );
     });
-    PassOutput { particles, stats: PassStats { paths: s.paths, emitted: Rgb::ONE, escaped, time: start.elapsed() } }
+    PassOutput {
+        particles,
+        stats: PassStats {
+            paths: s.paths,
+            emitted: Rgb::ONE,
+            escaped,
+            time: start.elapsed(),
+        },
+    }
 }

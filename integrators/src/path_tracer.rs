@@ -27,7 +27,13 @@ pub fn radiance(scene: &Scene, raster: Vec2, max_depth: u32, rng: &mut Rng) -> R
 /// Estimates the radiance arriving at `origin` from direction `-dir` (the ray `origin + t
 /// dir`); `origin` must already be offset off any surface it lies on. Emission at the first
 /// hit counts fully.
-pub fn radiance_along(scene: &Scene, origin: Vec3, dir: Vec3, max_depth: u32, rng: &mut Rng) -> Rgb {
+pub fn radiance_along(
+    scene: &Scene,
+    origin: Vec3,
+    dir: Vec3,
+    max_depth: u32,
+    rng: &mut Rng,
+) -> Rgb {
     let mut origin = origin;
     let mut dir = dir;
     let mut beta = Rgb::ONE;

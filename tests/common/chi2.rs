@@ -52,18 +52,33 @@ impl ChiSquareTest {
             .normalize()
     }
 
-    /// Runs the test: `sample(rng)` draws one direction (or fails), `pdf(dir)` is its density
-    /// per steradian.
-    pub fn run(
-        &self,
-        mut sample: impl FnMut(&mut Rng) -> Option<Vec3>,
-        pdf: impl Fn(Vec3) -> f64,
-    ) -> ChiSquareResult {
+    /// The cell of a unit direction, or `None` outside the cap.
+    pub fn cell_of(&self, d: Vec3) -> Option<usize> {
         let frame = Frame::from_z(self.axis.normalize());
         let (nt, np) = (self.res_theta, self.res_phi);
         let dt = self.theta_max / nt as f64;
         let dp = 2.0 * std::f64::consts::PI / np as f64;
-        // Expected mass per cell.
+        let l = frame.to_local(d.normalize());
+        let th = (l.z as f64).clamp(-1.0, 1.0).acos();
+        if th >= self.theta_max {
+            return None;
+        }
+        let mut ph = (l.y as f64).atan2(l.x as f64);
+        if ph < 0.0 {
+            ph += 2.0 * std::f64::consts::PI;
+        }
+        let it = ((th / dt) as usize).min(nt - 1);
+        let ip = ((ph / dp) as usize).min(np - 1);
+        Some(it * np + ip)
+    }
+
+    /// Probability mass of every cell under `pdf` (midpoint rule, `integration_res`² points
+    /// per cell).
+    pub fn masses_from_pdf(&self, pdf: impl Fn(Vec3) -> f64) -> Vec<f64> {
+        let frame = Frame::from_z(self.axis.normalize());
+        let (nt, np) = (self.res_theta, self.res_phi);
+        let dt = self.theta_max / nt as f64;
+        let dp = 2.0 * std::f64::consts::PI / np as f64;
         let k = self.integration_res;
         let mut expected = vec![0.0f64; nt * np];
         for it in 0..nt {
@@ -81,28 +96,39 @@ impl ChiSquareTest {
                 expected[it * np + ip] = m * dt * dp / (k * k) as f64;
             }
         }
+        expected
+    }
+
+    /// Runs the test: `sample(rng)` draws one direction (or fails), `pdf(dir)` is its density
+    /// per steradian.
+    pub fn run(
+        &self,
+        sample: impl FnMut(&mut Rng) -> Option<Vec3>,
+        pdf: impl Fn(Vec3) -> f64,
+    ) -> ChiSquareResult {
+        let masses = self.masses_from_pdf(pdf);
+        self.run_with_masses(sample, &masses)
+    }
+
+    /// Runs the test against given cell masses (for densities with features finer than the
+    /// cells, whose masses the caller integrates exactly).
+    pub fn run_with_masses(
+        &self,
+        mut sample: impl FnMut(&mut Rng) -> Option<Vec3>,
+        expected: &[f64],
+    ) -> ChiSquareResult {
         let integral: f64 = expected.iter().sum();
-        // Observed counts.
-        let mut observed = vec![0.0f64; nt * np];
+        let mut observed = vec![0.0f64; expected.len()];
         let mut outside = 0.0f64;
         let mut rng = Rng::new(self.seed, 0xC41, 0);
         for _ in 0..self.samples {
             match sample(&mut rng) {
                 Some(d) => {
                     assert!(d.is_finite(), "sampled a non-finite direction");
-                    let l = frame.to_local(d.normalize());
-                    let th = (l.z as f64).clamp(-1.0, 1.0).acos();
-                    if th >= self.theta_max {
-                        outside += 1.0;
-                        continue;
+                    match self.cell_of(d) {
+                        Some(c) => observed[c] += 1.0,
+                        None => outside += 1.0,
                     }
-                    let mut ph = (l.y as f64).atan2(l.x as f64);
-                    if ph < 0.0 {
-                        ph += 2.0 * std::f64::consts::PI;
-                    }
-                    let it = ((th / dt) as usize).min(nt - 1);
-                    let ip = ((ph / dp) as usize).min(np - 1);
-                    observed[it * np + ip] += 1.0;
                 }
                 None => outside += 1.0,
             }
@@ -111,7 +137,7 @@ impl ChiSquareTest {
         // Pool low-expectation cells; the outside bin is one more cell.
         let mut cells: Vec<(f64, f64)> = observed
             .iter()
-            .zip(&expected)
+            .zip(expected)
             .map(|(o, e)| (*o, e * n))
             .collect();
         cells.push((outside, (1.0 - integral).max(0.0) * n));

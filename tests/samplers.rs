@@ -1,0 +1,694 @@
+//! The direction samplers: sampling and pdf agree, always (METHOD.md, every pitfall a test).
+//!
+//! Each configuration places particles in the local frame of a surface (normal +z) and runs
+//! the footprint sampler (both radius rules) and the grid sampler through the chi-square
+//! harness: a histogram of 10^6 sampled directions against the mixture pdf's mass per cell,
+//! at significance 0.01 with a Šidák correction over every (configuration, sampler) tested.
+//! Footprint caps can be far smaller than a cell (a door gap, grazing particles), so their
+//! cell masses are integrated in each cap's own coordinates (400 x 400 points uniform
+//! in solid angle) and the BSDF part by the midpoint rule; the pdf itself is checked against
+//! that same cap mixture point by point, so sampling, pdf and mixture are tied together.
+
+mod common;
+
+use common::chi2::ChiSquareTest;
+use common::sidak;
+use footprint::Rgb;
+use footprint::bsdf::{Bsdf, Lobes, TransportMode};
+use footprint::direction_sampler::{
+    BsdfSampler, DirectionSampler, GuideParams, GuideState, RadiusRule, ScatterPoint,
+};
+use footprint::footprint_sampler::{FootprintSampler, cap_solid_angle};
+use footprint::grid_sampler::GridSampler;
+use footprint::math::Frame;
+use footprint::particle_map::{MapKind, ParticleMap};
+use footprint::rng::Rng;
+use footprint::sampling::{sample_cosine_hemisphere, sample_uniform_sphere};
+use glam::Vec3;
+
+fn dir(theta_deg: f32, phi_deg: f32) -> Vec3 {
+    let (t, p) = (theta_deg.to_radians(), phi_deg.to_radians());
+    Vec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos())
+}
+
+fn diffuse() -> Bsdf {
+    Bsdf::new(
+        Lobes::Diffuse {
+            kd: Rgb::splat(0.7),
+        },
+        Vec3::Z,
+        Vec3::Z,
+    )
+}
+
+fn glossy(n: f32) -> Bsdf {
+    Bsdf::new(
+        Lobes::Glossy {
+            kd: Rgb::splat(0.2),
+            ks: Rgb::splat(0.7),
+            exponent: n,
+            p_glossy: 0.7,
+        },
+        Vec3::Z,
+        Vec3::Z,
+    )
+}
+
+/// An empty map: the samplers are prepared from explicit particles in these tests.
+fn empty_map() -> ParticleMap {
+    ParticleMap::build(MapKind::Photons, &[])
+}
+
+struct Config {
+    name: &'static str,
+    particles: Vec<(Vec3, f32)>,
+    bsdf: Bsdf,
+    wo: Vec3,
+    /// Harness region: axis and half-angle (π: whole sphere).
+    axis: Vec3,
+    theta_max: f64,
+}
+
+fn configs() -> Vec<Config> {
+    let mut rng = Rng::new(31, 0, 0);
+    let mut v = Vec::new();
+    let sphere = |name, particles, bsdf, wo| Config {
+        name,
+        particles,
+        bsdf,
+        wo,
+        axis: Vec3::Z,
+        theta_max: std::f64::consts::PI,
+    };
+    // Random particles, cosine-distributed, random contributions.
+    let random: Vec<(Vec3, f32)> = (0..50)
+        .map(|_| {
+            (
+                sample_cosine_hemisphere(rng.uniform2()),
+                0.1 + rng.uniform(),
+            )
+        })
+        .collect();
+    v.push(sphere("random", random.clone(), diffuse(), dir(30.0, 0.0)));
+    // All particles in a tiny cone (the door gap), 0.01 rad around a direction at 60 degrees.
+    let centre = dir(60.0, 40.0);
+    let f = Frame::from_z(centre);
+    let cone: Vec<(Vec3, f32)> = (0..50)
+        .map(|_| {
+            let a = 0.01 * rng.uniform().sqrt();
+            let p = 6.283 * rng.uniform();
+            (
+                f.to_world(Vec3::new(a * p.cos(), a * p.sin(), 1.0))
+                    .normalize(),
+                1.0 + rng.uniform(),
+            )
+        })
+        .collect();
+    v.push(Config {
+        name: "tiny cone",
+        particles: cone,
+        bsdf: diffuse(),
+        wo: dir(10.0, 0.0),
+        axis: centre,
+        theta_max: 0.05,
+    });
+    // Grazing particles, cos θ_p from 1e-6 to 1e-2 (those under 1e-3 are left out).
+    let grazing: Vec<(Vec3, f32)> = (0..50)
+        .map(|i| {
+            let c = 10f32.powf(-6.0 + 4.0 * i as f32 / 49.0);
+            let s = (1.0 - c * c).sqrt();
+            let p = 0.2 * i as f32;
+            (Vec3::new(s * p.cos(), s * p.sin(), c), 1.0)
+        })
+        .collect();
+    v.push(Config {
+        name: "grazing",
+        particles: grazing,
+        bsdf: diffuse(),
+        wo: dir(20.0, 0.0),
+        axis: Vec3::Z,
+        theta_max: std::f64::consts::PI,
+    });
+    // Exactly along the normal and exactly on the horizon.
+    let mut normal_horizon: Vec<(Vec3, f32)> = (0..25).map(|_| (Vec3::Z, 1.0)).collect();
+    normal_horizon.extend((0..25).map(|i| (dir(90.0, 14.4 * i as f32), 1.0)));
+    v.push(sphere(
+        "normal and horizon",
+        normal_horizon,
+        diffuse(),
+        dir(45.0, 90.0),
+    ));
+    // Both hemispheres (transmission).
+    let both: Vec<(Vec3, f32)> = (0..50)
+        .map(|_| (sample_uniform_sphere(rng.uniform2()), 0.5 + rng.uniform()))
+        .collect();
+    v.push(sphere(
+        "both hemispheres",
+        both,
+        diffuse(),
+        dir(30.0, 200.0),
+    ));
+    // One particle.
+    v.push(sphere(
+        "one particle",
+        vec![(dir(35.0, 120.0), 1.0)],
+        diffuse(),
+        dir(0.0, 0.0),
+    ));
+    // Contributions spanning 60 orders of magnitude, some zero.
+    let span: Vec<(Vec3, f32)> = (0..50)
+        .map(|i| {
+            let c = if i % 7 == 0 {
+                0.0
+            } else {
+                10f32.powf(-30.0 + 60.0 * i as f32 / 49.0)
+            };
+            (sample_cosine_hemisphere(rng.uniform2()), c)
+        })
+        .collect();
+    v.push(sphere(
+        "60 orders of magnitude, some zero",
+        span,
+        diffuse(),
+        dir(50.0, 0.0),
+    ));
+    // Flipped normals: the geometric and shading normals point down, the path arrives from
+    // above, so the side normal is +z again.
+    let flipped = Bsdf::new(
+        Lobes::Diffuse {
+            kd: Rgb::splat(0.5),
+        },
+        -Vec3::Z,
+        -Vec3::Z,
+    );
+    v.push(sphere(
+        "flipped normals",
+        random.clone(),
+        flipped,
+        dir(40.0, 10.0),
+    ));
+    // Glossy Blinn exponent 10^4: a lobe 0.02 rad wide around the mirror direction.
+    let wo = dir(30.0, 0.0);
+    let mirror = Vec3::new(-wo.x, -wo.y, wo.z);
+    let near_mirror: Vec<(Vec3, f32)> = (0..50)
+        .map(|_| {
+            let f = Frame::from_z(mirror);
+            let a = 0.05 * rng.uniform().sqrt();
+            let p = 6.283 * rng.uniform();
+            (
+                f.to_world(Vec3::new(a * p.cos(), a * p.sin(), 1.0))
+                    .normalize(),
+                1.0,
+            )
+        })
+        .collect();
+    v.push(Config {
+        name: "glossy n=1e4",
+        particles: near_mirror,
+        bsdf: glossy(1.0e4),
+        wo,
+        axis: mirror,
+        theta_max: 0.12,
+    });
+    v.push(sphere("glossy n=30", random, glossy(30.0), dir(60.0, 0.0)));
+    v
+}
+
+fn point<'a>(c: &'a Config) -> ScatterPoint<'a> {
+    ScatterPoint {
+        p: Vec3::ZERO,
+        bsdf: &c.bsdf,
+        wo: c.wo,
+        mode: TransportMode::Radiance,
+        throughput: Rgb::ONE,
+    }
+}
+
+fn params(rule: RadiusRule) -> GuideParams {
+    GuideParams {
+        radius_rule: rule,
+        ..GuideParams::default()
+    }
+}
+
+/// Cell masses of the footprint mixture: BSDF part by the midpoint rule, caps exactly.
+fn footprint_masses(
+    test: &ChiSquareTest,
+    at: &ScatterPoint,
+    state: &GuideState,
+    p_bsdf: f32,
+) -> Vec<f64> {
+    let mut m: Vec<f64> = test.masses_from_pdf(|d| p_bsdf as f64 * at.bsdf.pdf(at.wo, d) as f64);
+    let frame = state.frame.unwrap();
+    let n = 400;
+    for cap in &state.footprint.caps {
+        if cap.prob == 0.0 {
+            continue;
+        }
+        let (t1, t2) = cap.dir.any_orthonormal_pair();
+        let w = (1.0 - p_bsdf) as f64 * cap.prob as f64 / (n * n) as f64;
+        for a in 0..n {
+            let omc = (a as f64 + 0.5) / n as f64 * cap.one_minus_cos as f64;
+            let cos = 1.0 - omc;
+            let sin = (omc * (2.0 - omc)).max(0.0).sqrt();
+            for b in 0..n {
+                let phi = (b as f64 + 0.5) / n as f64 * std::f64::consts::TAU;
+                let local = cap.dir.as_dvec3() * cos
+                    + (t1.as_dvec3() * phi.cos() + t2.as_dvec3() * phi.sin()) * sin;
+                if let Some(c) = test.cell_of(frame.to_world(local.as_vec3())) {
+                    m[c] += w;
+                }
+            }
+        }
+    }
+    m
+}
+
+/// Cell masses of the grid mixture: BSDF part by the midpoint rule, the grid part exactly.
+/// A grid cell is a rectangle in `(cos θ, φ)` (uniform density there) and so is a harness
+/// cell (the harness here is the whole sphere around the same normal, in the same frame), so
+/// their overlap is a product of two interval overlaps.
+fn grid_masses(
+    test: &ChiSquareTest,
+    at: &ScatterPoint,
+    sampler: &GridSampler,
+    state: &GuideState,
+) -> Vec<f64> {
+    use std::f64::consts::{PI, TAU};
+    assert_eq!(
+        test.theta_max, PI,
+        "the exact grid masses assume a whole-sphere harness"
+    );
+    let p_bsdf = sampler.params.p_bsdf;
+    let mut m: Vec<f64> = test.masses_from_pdf(|d| p_bsdf as f64 * at.bsdf.pdf(at.wo, d) as f64);
+    let side = sampler.params.grid_side;
+    let overlap = |a0: f64, a1: f64, b0: f64, b1: f64| (a1.min(b1) - a0.max(b0)).max(0.0);
+    for hemi in [1.0f64, -1.0] {
+        for j in 0..side {
+            for i in 0..side {
+                // Grid cell: |cos θ| in [1 - (i+1)/side, 1 - i/side], φ in [j, j+1] * 2π/side.
+                let (u0, u1) = (i as f64 / side as f64, (i + 1) as f64 / side as f64);
+                let (f0, f1) = (
+                    j as f64 / side as f64 * TAU,
+                    (j + 1) as f64 / side as f64 * TAU,
+                );
+                let centre = {
+                    let c = 1.0 - 0.5 * (u0 + u1);
+                    let s = (1.0 - c * c).sqrt();
+                    let ph = 0.5 * (f0 + f1);
+                    Vec3::new(
+                        (s * ph.cos()) as f32,
+                        (s * ph.sin()) as f32,
+                        (hemi * c) as f32,
+                    )
+                };
+                let density = state.grid.pdf(centre) as f64;
+                if density == 0.0 {
+                    continue;
+                }
+                let mass = (1.0 - p_bsdf) as f64 * density * state.grid.cell_solid_angle() as f64;
+                // In signed cos θ: [c_lo, c_hi].
+                let (c_lo, c_hi) = if hemi > 0.0 {
+                    (1.0 - u1, 1.0 - u0)
+                } else {
+                    (-(1.0 - u0), -(1.0 - u1))
+                };
+                for it in 0..test.res_theta {
+                    let t0 = it as f64 * PI / test.res_theta as f64;
+                    let t1 = (it + 1) as f64 * PI / test.res_theta as f64;
+                    let wc = overlap(t1.cos(), t0.cos(), c_lo, c_hi) / (c_hi - c_lo);
+                    if wc == 0.0 {
+                        continue;
+                    }
+                    for ip in 0..test.res_phi {
+                        let p0 = ip as f64 * TAU / test.res_phi as f64;
+                        let p1 = (ip + 1) as f64 * TAU / test.res_phi as f64;
+                        let wp = overlap(p0, p1, f0, f1) / (f1 - f0);
+                        m[it * test.res_phi + ip] += mass * wc * wp;
+                    }
+                }
+            }
+        }
+    }
+    m
+}
+
+#[test]
+fn every_sampler_passes_chi_square_in_every_configuration() {
+    let map = empty_map();
+    let configs = configs();
+    let samplers = 4; // footprint (two rules), grid, bsdf
+    let alpha = sidak(0.01, configs.len() * samplers);
+    for c in &configs {
+        let at = point(c);
+        let frame = Frame::from_z(at.side_normal());
+        let test = ChiSquareTest {
+            axis: frame.to_world(c.axis),
+            theta_max: c.theta_max,
+            res_theta: if c.theta_max < 1.0 { 30 } else { 40 },
+            res_phi: if c.theta_max < 1.0 { 40 } else { 80 },
+            samples: 1_000_000,
+            integration_res: if c.theta_max < 1.0 { 6 } else { 4 },
+            seed: 17,
+        };
+        let local: Vec<(Vec3, f32)> = c.particles.clone();
+        for rule in [RadiusRule::SolidAngle, RadiusRule::Literal] {
+            let fp = FootprintSampler::new(&map, params(rule), 1.0, 100.0);
+            let mut state = GuideState::default();
+            fp.prepare_with(frame, &local, &mut state);
+            if !state.guided {
+                // Every particle left out (grazing below the floor): BSDF sampling only.
+                assert_eq!(
+                    c.name, "normal and horizon or none",
+                    "{}: unexpected fallback",
+                    c.name
+                );
+            }
+            let masses = footprint_masses(&test, &at, &state, fp.params.p_bsdf);
+            let r = test.run_with_masses(|rng| fp.sample(&at, &state, rng).map(|s| s.wi), &masses);
+            eprintln!(
+                "{} footprint {}: chi2 {:.0} dof {} p {:.3e}",
+                c.name,
+                rule.name(),
+                r.chi2,
+                r.dof,
+                r.p_value
+            );
+            assert!(
+                r.p_value > alpha,
+                "{} footprint {}: p = {:.3e}",
+                c.name,
+                rule.name(),
+                r.p_value
+            );
+            // The pdf the sampler reports is that mixture, point by point.
+            let mut rng = Rng::new(5, 0, 0);
+            for _ in 0..2000 {
+                let d = if rng.uniform() < 0.5 {
+                    sample_uniform_sphere(rng.uniform2())
+                } else {
+                    match fp.sample(&at, &state, &mut rng) {
+                        Some(s) => s.wi,
+                        None => continue,
+                    }
+                };
+                let l = frame.to_local(d).as_dvec3();
+                let mut expect = fp.params.p_bsdf as f64 * at.bsdf.pdf(at.wo, d) as f64;
+                for cap in &state.footprint.caps {
+                    let cd = cap.dir.as_dvec3();
+                    if l.dot(cd) > 0.0 && l.cross(cd).length_squared() < cap.r2 as f64 {
+                        expect += (1.0 - fp.params.p_bsdf as f64)
+                            * cap.prob as f64
+                            * cap.inv_solid_angle as f64;
+                    }
+                }
+                let got = fp.pdf(&at, &state, d) as f64;
+                assert!(
+                    (got - expect).abs() <= 1e-4 * expect.max(1e-6),
+                    "{}: pdf {got} vs mixture {expect}",
+                    c.name
+                );
+            }
+        }
+        // The grid sampler (its cells are far coarser than the narrow harness regions, so it
+        // is tested where the harness covers the whole sphere).
+        if c.theta_max == std::f64::consts::PI {
+            let grid = GridSampler::new(&map, GuideParams::default(), 1.0, 100.0);
+            let mut state = GuideState::default();
+            grid.prepare_with(frame, &local, &mut state);
+            let masses = grid_masses(&test, &at, &grid, &state);
+            let r =
+                test.run_with_masses(|rng| grid.sample(&at, &state, rng).map(|s| s.wi), &masses);
+            eprintln!(
+                "{} grid: chi2 {:.0} dof {} p {:.3e}",
+                c.name, r.chi2, r.dof, r.p_value
+            );
+            assert!(r.p_value > alpha, "{} grid: p = {:.3e}", c.name, r.p_value);
+        }
+        // BSDF sampling alone.
+        let state = GuideState::default();
+        let r = test.run(
+            |rng| BsdfSampler.sample(&at, &state, rng).map(|s| s.wi),
+            |d| BsdfSampler.pdf(&at, &state, d) as f64,
+        );
+        assert!(r.p_value > alpha, "{} bsdf: p = {:.3e}", c.name, r.p_value);
+    }
+}
+
+/// Random configurations (random particle counts, directions including grazing, horizon and
+/// both hemispheres, contributions over many orders of magnitude, diffuse and glossy BSDFs up
+/// to n = 10^4, both modes, tilted shading normals): `sample` and `pdf` never give NaN,
+/// infinity or a negative value, `sample` reports the pdf that `pdf` gives for its direction,
+/// and wherever `f · cos > 0` the mixture pdf is positive (no coverage holes).
+#[test]
+fn random_configurations_stay_finite_and_consistent() {
+    let map = empty_map();
+    let mut rng = Rng::new(99, 0, 0);
+    for config in 0..300 {
+        let n = 1 + (rng.uniform() * 80.0) as usize;
+        let particles: Vec<(Vec3, f32)> = (0..n)
+            .map(|_| {
+                let d = match (rng.uniform() * 4.0) as u32 {
+                    0 => sample_uniform_sphere(rng.uniform2()),
+                    1 => {
+                        let c = 10f32.powf(-7.0 * rng.uniform());
+                        let p = 6.283 * rng.uniform();
+                        let s = (1.0 - c * c).sqrt();
+                        Vec3::new(
+                            s * p.cos(),
+                            s * p.sin(),
+                            if rng.uniform() < 0.5 { c } else { -c },
+                        )
+                    }
+                    2 => Vec3::Z,
+                    _ => sample_cosine_hemisphere(rng.uniform2()),
+                };
+                (
+                    d,
+                    10f32.powf(30.0 * rng.uniform() - 15.0) * (rng.uniform() > 0.1) as u32 as f32,
+                )
+            })
+            .collect();
+        let exponent = 10f32.powf(4.0 * rng.uniform());
+        let ns = (Vec3::Z + 0.3 * sample_uniform_sphere(rng.uniform2())).normalize();
+        let lobes = if rng.uniform() < 0.5 {
+            Lobes::Diffuse {
+                kd: Rgb::splat(0.8),
+            }
+        } else {
+            Lobes::Glossy {
+                kd: Rgb::splat(0.3),
+                ks: Rgb::splat(0.6),
+                exponent,
+                p_glossy: 0.6,
+            }
+        };
+        let bsdf = Bsdf::new(lobes, ns, Vec3::Z);
+        let wo = sample_cosine_hemisphere(rng.uniform2());
+        let mode = if rng.uniform() < 0.5 {
+            TransportMode::Radiance
+        } else {
+            TransportMode::Importance
+        };
+        let at = ScatterPoint {
+            p: Vec3::ZERO,
+            bsdf: &bsdf,
+            wo,
+            mode,
+            throughput: Rgb::ONE,
+        };
+        let frame = Frame::from_z(at.side_normal());
+        let rule = if rng.uniform() < 0.5 {
+            RadiusRule::SolidAngle
+        } else {
+            RadiusRule::Literal
+        };
+        let fp = FootprintSampler::new(&map, params(rule), 1.0, 1e9);
+        let grid = GridSampler::new(&map, GuideParams::default(), 1.0, 1e9);
+        let mut s_fp = GuideState::default();
+        let mut s_grid = GuideState::default();
+        fp.prepare_with(frame, &particles, &mut s_fp);
+        grid.prepare_with(frame, &particles, &mut s_grid);
+        let samplers: [(&dyn DirectionSampler, &GuideState); 3] =
+            [(&fp, &s_fp), (&grid, &s_grid), (&BsdfSampler, &s_fp)];
+        for (sampler, state) in samplers {
+            for _ in 0..200 {
+                if let Some(s) = sampler.sample(&at, state, &mut rng) {
+                    assert!(
+                        s.wi.is_finite() && (s.wi.length() - 1.0).abs() < 1e-3,
+                        "config {config}: direction"
+                    );
+                    assert!(
+                        s.pdf_w.is_finite() && s.pdf_w > 0.0,
+                        "config {config} {}: pdf {}",
+                        sampler.name(),
+                        s.pdf_w
+                    );
+                    assert!(
+                        s.weight.is_finite() && s.weight.min_element() >= 0.0,
+                        "config {config}: weight {}",
+                        s.weight
+                    );
+                    let p = sampler.pdf(&at, state, s.wi);
+                    assert!(
+                        (p - s.pdf_w).abs() <= 1e-4 * p.max(1e-6),
+                        "config {config} {}: sample pdf {} vs pdf {p}",
+                        sampler.name(),
+                        s.pdf_w
+                    );
+                }
+                let d = sample_uniform_sphere(rng.uniform2());
+                let p = sampler.pdf(&at, state, d);
+                assert!(p.is_finite() && p >= 0.0, "config {config}: pdf {p}");
+                let fc = bsdf.eval(wo, d, mode).max_element() * d.dot(ns).abs();
+                if fc > 0.0 {
+                    assert!(
+                        p > 0.0,
+                        "config {config} {}: coverage hole (f cos = {fc})",
+                        sampler.name()
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// The footprint part of the pdf integrates to 1 over the sphere, by quadrature of `pdf`
+/// itself: inside each cap, 300 x 300 points uniform in solid angle, each weighted by the
+/// cap's solid angle over the number of caps containing the point (a partition of unity over
+/// the union of caps; outside every cap the footprint part is zero). Tolerance 1e-3.
+#[test]
+fn footprint_pdf_integrates_to_one() {
+    let map = empty_map();
+    for c in configs() {
+        for rule in [RadiusRule::SolidAngle, RadiusRule::Literal] {
+            let fp = FootprintSampler::new(&map, params(rule), 1.0, 100.0);
+            let mut state = GuideState::default();
+            fp.prepare_with(Frame::from_z(Vec3::Z), &c.particles, &mut state);
+            if !state.guided {
+                continue;
+            }
+            let caps = &state.footprint.caps;
+            let n = 300;
+            let mut integral = 0.0f64;
+            for cap in caps {
+                let (t1, t2) = cap.dir.any_orthonormal_pair();
+                let omega = 2.0 * std::f64::consts::PI * cap.one_minus_cos as f64;
+                for a in 0..n {
+                    let omc = (a as f64 + 0.5) / n as f64 * cap.one_minus_cos as f64;
+                    let sin = (omc * (2.0 - omc)).max(0.0).sqrt();
+                    for b in 0..n {
+                        let phi = (b as f64 + 0.5) / n as f64 * std::f64::consts::TAU;
+                        let d = (cap.dir.as_dvec3() * (1.0 - omc)
+                            + (t1.as_dvec3() * phi.cos() + t2.as_dvec3() * phi.sin()) * sin)
+                            .as_vec3();
+                        let cover = caps
+                            .iter()
+                            .filter(|k| {
+                                d.dot(k.dir) > 0.0 && d.cross(k.dir).length_squared() < k.r2
+                            })
+                            .count();
+                        if cover > 0 {
+                            integral += state.footprint.pdf(d) as f64 * omega
+                                / (n * n) as f64
+                                / cover as f64;
+                        }
+                    }
+                }
+            }
+            let expect: f64 = caps.iter().map(|k| k.prob as f64).sum();
+            eprintln!(
+                "{} {}: ∫ p_fp = {integral:.6} (cap probabilities sum to {expect:.6})",
+                c.name,
+                rule.name()
+            );
+            assert!(
+                (integral - 1.0).abs() < 1e-3,
+                "{} {}: ∫ p_fp = {integral}",
+                c.name,
+                rule.name()
+            );
+        }
+    }
+}
+
+/// The cap solid angle in f32 matches an f64 reference for sine-radii from 1e-6 to 1.
+#[test]
+fn cap_solid_angle_is_accurate_in_f32() {
+    for i in 0..=60 {
+        let r = 10f64.powf(-6.0 + 6.0 * i as f64 / 60.0);
+        let reference = 2.0 * std::f64::consts::PI * r * r / (1.0 + (1.0 - r * r).sqrt());
+        let got = cap_solid_angle(r as f32) as f64;
+        assert!(
+            ((got - reference) / reference).abs() < 1e-5,
+            "r = {r}: {got} vs {reference}"
+        );
+    }
+}
+
+/// Fewer than k_p particles with a positive contribution: the guided samplers fall back to the
+/// BSDF, in sampling and pdf alike, and count the fallback.
+#[test]
+fn too_few_particles_fall_back_to_the_bsdf() {
+    let particles: Vec<footprint::particle_map::ParticleInput> = (0..30)
+        .map(|i| footprint::particle_map::ParticleInput {
+            position: Vec3::new(0.01 * i as f32, 0.0, 0.0),
+            dir: dir(30.0, 12.0 * i as f32).normalize(),
+            normal: Vec3::Z,
+            weight: Rgb::ONE,
+            depth: 1,
+            specular_chain: true,
+        })
+        .collect();
+    let map = ParticleMap::build(MapKind::Photons, &particles);
+    let bsdf = diffuse();
+    let at = ScatterPoint {
+        p: Vec3::new(0.1, 0.0, 0.0),
+        bsdf: &bsdf,
+        wo: dir(20.0, 0.0),
+        mode: TransportMode::Radiance,
+        throughput: Rgb::ONE,
+    };
+    for k_p in [10usize, 50] {
+        let fp = FootprintSampler::new(
+            &map,
+            GuideParams {
+                k_p,
+                ..GuideParams::default()
+            },
+            1.0,
+            100.0,
+        );
+        let mut state = GuideState::default();
+        fp.prepare(&at, &mut state);
+        assert_eq!(state.guided, k_p <= 30, "k_p = {k_p}");
+        assert_eq!(state.fallbacks, (k_p > 30) as u64);
+        let d = dir(40.0, 100.0);
+        if !state.guided {
+            assert_eq!(fp.pdf(&at, &state, d), bsdf.pdf(at.wo, d));
+        } else {
+            assert_ne!(
+                fp.pdf(&at, &state, dir(30.0, 0.0)),
+                bsdf.pdf(at.wo, dir(30.0, 0.0))
+            );
+        }
+    }
+    // A mirror is never guided.
+    let mirror = Bsdf::new(Lobes::Mirror { r: Rgb::ONE }, Vec3::Z, Vec3::Z);
+    let at = ScatterPoint {
+        bsdf: &mirror,
+        ..at
+    };
+    let fp = FootprintSampler::new(
+        &map,
+        GuideParams {
+            k_p: 10,
+            ..GuideParams::default()
+        },
+        1.0,
+        100.0,
+    );
+    let mut state = GuideState::default();
+    fp.prepare(&at, &mut state);
+    assert!(!state.guided);
+}
