@@ -29,6 +29,8 @@ struct SceneFile {
     #[serde(default)]
     maps: MapsDesc,
     #[serde(default)]
+    guide: GuideDesc,
+    #[serde(default)]
     mesh: Vec<MeshDesc>,
     #[serde(default)]
     light: Vec<LightDesc>,
@@ -53,10 +55,22 @@ fn default_up() -> [f32; 3] {
 #[serde(deny_unknown_fields)]
 struct RenderDesc {
     integrator: Option<String>,
+    guide: Option<String>,
     spp: Option<u32>,
     time: Option<f64>,
     max_depth: Option<u32>,
     seed: Option<u64>,
+}
+
+#[derive(Deserialize, Debug, Default)]
+#[serde(deny_unknown_fields)]
+struct GuideDesc {
+    k_p: Option<usize>,
+    k_g: Option<usize>,
+    k_r: Option<f32>,
+    p_bsdf: Option<f32>,
+    radius_rule: Option<String>,
+    grid: Option<usize>,
 }
 
 #[derive(Deserialize, Debug, Default)]
@@ -199,6 +213,18 @@ fn build_scene(path: &Path, dir: &Path, file: SceneFile) -> Result<Scene> {
         }
         settings.integrator = i.clone();
     }
+    if let Some(g) = &r.guide {
+        if !crate::scene::GUIDES.contains(&g.as_str()) {
+            return Err(Error::invalid(
+                path,
+                format!(
+                    "render.guide: unknown guide '{g}' (expected one of {})",
+                    crate::scene::GUIDES.join(", ")
+                ),
+            ));
+        }
+        settings.guide = g.clone();
+    }
     if let Some(s) = r.spp {
         if s == 0 {
             return Err(Error::invalid(path, "render.spp must be at least 1"));
@@ -316,12 +342,43 @@ fn build_scene(path: &Path, dir: &Path, file: SceneFile) -> Result<Scene> {
     maps.validate()
         .map_err(|e| Error::invalid(path, format!("maps.{e}")))?;
 
+    // ---- Direction samplers ----
+    let mut guide = crate::direction_sampler::GuideParams::default();
+    let g = &file.guide;
+    if let Some(v) = g.k_p {
+        guide.k_p = v;
+    }
+    if let Some(v) = g.k_g {
+        guide.k_g_side = v;
+    }
+    if let Some(v) = g.k_r {
+        guide.k_r = v;
+    }
+    if let Some(v) = g.p_bsdf {
+        guide.p_bsdf = v;
+    }
+    if let Some(v) = &g.radius_rule {
+        guide.radius_rule = crate::direction_sampler::RadiusRule::parse(v).ok_or_else(|| {
+            Error::invalid(
+                path,
+                format!("guide.radius_rule: unknown rule '{v}' (expected solid-angle or literal)"),
+            )
+        })?;
+    }
+    if let Some(v) = g.grid {
+        guide.grid_side = v;
+    }
+    guide
+        .validate()
+        .map_err(|e| Error::invalid(path, format!("guide.{e}")))?;
+
     stats.triangles = triangles.len();
     let mut scene = Scene::new(
         camera, triangles, shading, materials, textures, lights, settings, stats,
     )
     .map_err(|m| Error::invalid(path, m))?;
     scene.maps = maps;
+    scene.guide = guide;
     Ok(scene)
 }
 

@@ -13,12 +13,17 @@ use crate::texture::Texture;
 use glam::{Vec2, Vec3};
 
 /// Integrators the scene file and the command line accept.
-pub const INTEGRATORS: &[&str] = &["pt", "lt"];
+pub const INTEGRATORS: &[&str] = &["pt", "lt", "combined"];
+
+/// Direction samplers the scene file and the command line accept.
+pub const GUIDES: &[&str] = &["bsdf", "grid", "footprint"];
 
 /// Render settings read from the scene file (the command line may override them).
 #[derive(Clone, Debug)]
 pub struct RenderSettings {
     pub integrator: String,
+    /// Direction sampler: bsdf, grid or footprint.
+    pub guide: String,
     /// Samples per pixel (path tracing) or light paths per pixel (light tracing).
     pub spp: u32,
     /// Time budget in seconds; when set it replaces `spp`.
@@ -32,6 +37,7 @@ impl Default for RenderSettings {
     fn default() -> Self {
         RenderSettings {
             integrator: "pt".into(),
+            guide: "bsdf".into(),
             spp: 16,
             time: None,
             max_depth: 8,
@@ -118,6 +124,7 @@ pub struct Scene {
     pub bvh: Bvh,
     pub settings: RenderSettings,
     pub maps: MapSettings,
+    pub guide: crate::direction_sampler::GuideParams,
     pub effects: Effects,
     pub stats: LoadStats,
     /// Scene bounding box.
@@ -185,6 +192,7 @@ impl Scene {
             bvh,
             settings,
             maps: MapSettings::default(),
+            guide: crate::direction_sampler::GuideParams::default(),
             effects,
             stats,
             bounds: (lo, hi),

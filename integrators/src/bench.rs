@@ -121,6 +121,98 @@ pub fn run(scenes: &Path, seconds: f64) -> Result<()> {
         );
     }
 
+    // ---- Direction samplers: cost of one scattering event, single thread ----
+    {
+        use footprint::bsdf::TransportMode;
+        use footprint::direction_sampler::{
+            BsdfSampler, DirectionSampler, GuideParams, GuideState, ScatterPoint,
+        };
+        use footprint::footprint_sampler::FootprintSampler;
+        use footprint::grid_sampler::GridSampler;
+        let s = PassSettings {
+            paths: door.maps.photons,
+            max_depth: door.settings.max_depth,
+            seed: 1,
+            soft_glossy_max: door.maps.soft_glossy_max,
+        };
+        let map = ParticleMap::build(MapKind::Importons, &view_pass(&door, &s).particles);
+        let hits: Vec<(footprint::geometry::SurfaceHit, glam::Vec3)> = (0..2000u64)
+            .filter_map(|i| {
+                let mut rng = Rng::new(5, 9, i);
+                let raster = rng.uniform2() * Vec2::new(cam.width as f32, cam.height as f32);
+                let d = cam.ray_dir(raster);
+                door.intersect(cam.position, d, f32::INFINITY)
+                    .map(|h| (h, -d))
+            })
+            .collect();
+        let bsdfs: Vec<_> = hits.iter().map(|(h, _)| door.bsdf(h)).collect();
+        let params = GuideParams::default();
+        let fp = FootprintSampler::new(&map, params.clone(), max_dist, door.maps.soft_glossy_max);
+        let grid = GridSampler::new(&map, params.clone(), max_dist, door.maps.soft_glossy_max);
+        let samplers: [&dyn DirectionSampler; 3] = [&BsdfSampler, &grid, &fp];
+        let mut rng = Rng::new(1, 2, 3);
+        let mut buf = Vec::new();
+        let reps = 5;
+        let t = Instant::now();
+        for _ in 0..reps {
+            for (i, (h, wo)) in hits.iter().enumerate() {
+                let at = ScatterPoint {
+                    p: h.p,
+                    bsdf: &bsdfs[i],
+                    wo: *wo,
+                    mode: TransportMode::Importance,
+                    throughput: footprint::Rgb::ONE,
+                };
+                std::hint::black_box(map.query(
+                    h.p,
+                    at.side_normal(),
+                    params.k_p,
+                    max_dist,
+                    |nb| at.contribution(nb.dir, nb.weight),
+                    &mut buf,
+                ));
+            }
+        }
+        let query_ns = t.elapsed().as_nanos() as f64 / (reps * hits.len()) as f64;
+        println!(
+            "door importance map: {:.0} ns per k=50 query with contributions (single thread)",
+            query_ns
+        );
+        for sampler in samplers {
+            let mut state = GuideState::default();
+            let (mut t_prep, mut t_sp) = (0.0f64, 0.0f64);
+            for _ in 0..reps {
+                for (i, (h, wo)) in hits.iter().enumerate() {
+                    let at = ScatterPoint {
+                        p: h.p,
+                        bsdf: &bsdfs[i],
+                        wo: *wo,
+                        mode: TransportMode::Importance,
+                        throughput: footprint::Rgb::ONE,
+                    };
+                    let t0 = Instant::now();
+                    sampler.prepare(&at, &mut state);
+                    let t1 = Instant::now();
+                    if let Some(s) = sampler.sample(&at, &state, &mut rng) {
+                        std::hint::black_box(sampler.pdf(&at, &state, s.wi));
+                    }
+                    let t2 = Instant::now();
+                    t_prep += (t1 - t0).as_secs_f64();
+                    t_sp += (t2 - t1).as_secs_f64();
+                }
+            }
+            let n = (reps * hits.len()) as f64;
+            println!(
+                "{:>9} sampler: prepare (query and build) {:.0} ns, sample + pdf {:.0} ns, per scattering event (single thread; {} of {} guided)",
+                sampler.name(),
+                t_prep / n * 1e9,
+                t_sp / n * 1e9,
+                state.prepared - state.fallbacks,
+                state.prepared
+            );
+        }
+    }
+
     // ---- Path samples on cornell ----
     let cornell = load_scene(&scenes.join("cornell/cornell.toml"))?;
     let mut opts = RenderOptions::from_scene(&cornell);

@@ -1,6 +1,10 @@
-//! Light tracing (Veach 1997, §10.3; Dutré et al. 1993): paths start on the lights (chosen
-//! in proportion to power) and every non-specular vertex, the light vertex included, is
-//! connected to the pinhole camera and splatted onto the film.
+//! Light tracing (Veach 1997, §10.3; Dutré et al. 1993), guided or not: paths start on the
+//! lights (chosen in proportion to power), every scattering direction comes from the
+//! direction sampler (BSDF, grid or footprint over the importance map), and every
+//! non-specular vertex, the light vertex included, is connected to the pinhole camera and
+//! splatted onto the film. At area lights the emission direction is guided too: the emitted
+//! cosine lobe plays the BSDF's part, and the importons that reached the light's surface
+//! (paper §2.1) give the footprints.
 //!
 //! Normalisation. With `N` light paths, a connection from vertex `x` with throughput `β`
 //! (flux per unit area and solid angle, divided by all pdfs so far) adds to pixel `j`
@@ -10,19 +14,48 @@
 //! where `W_e · P` is the box-filter importance of one of the `P` pixels (see
 //! `footprint::camera`). The driver divides by `N`; this module multiplies by `P`.
 //!
+//! For the combined image each connection also carries its three-strategy weight
+//! ([`crate::mis`]), against the path tracer's light hits and next-event connections; its
+//! splat there is divided by `P` already, so that the combined film averages per pass like
+//! the camera paths' contributions.
+//!
 //! Path length: `max_depth` counts segments, the camera connection included: a connection
 //! from the `n`-th hit closes a path of `n + 1` segments.
 
-use crate::path_tracer::RR_START_DEPTH;
-use footprint::bsdf::TransportMode;
+use crate::mis::{step_area, to_area, weight};
+use crate::path_tracer::{RR_START_DEPTH, light_pos_pdf};
+use footprint::Rgb;
+use footprint::bsdf::{Bsdf, Lobes, TransportMode};
+use footprint::direction_sampler::{DirectionSampler, GuideState, ScatterPoint};
 use footprint::film::SplatList;
 use footprint::geometry::{offset_ray_origin, spawn_origin};
-use footprint::math::luminance;
+use footprint::math::{PI, luminance};
 use footprint::rng::Rng;
 use footprint::scene::Scene;
+use glam::Vec3;
 
-/// Traces one light path and splats its camera connections into `splats`.
-pub fn trace(scene: &Scene, max_depth: u32, rng: &mut Rng, splats: &mut SplatList) {
+/// Splat targets: the light tracer's own image and the combined image.
+pub struct Splats<'a> {
+    pub lt: &'a mut SplatList,
+    pub combined: Option<&'a mut SplatList>,
+}
+
+#[derive(Clone, Copy)]
+struct Vtx {
+    p: Vec3,
+    n: Option<Vec3>,
+    bsdf: Option<Bsdf>,
+}
+
+/// Traces one light path and splats its camera connections.
+pub fn trace(
+    scene: &Scene,
+    max_depth: u32,
+    rng: &mut Rng,
+    sampler: &dyn DirectionSampler,
+    state: &mut GuideState,
+    splats: &mut Splats,
+) {
     let cam = &scene.camera;
     let (w, h) = (cam.width, cam.height);
     let pixels = cam.pixel_count() as f32;
@@ -31,6 +64,8 @@ pub fn trace(scene: &Scene, max_depth: u32, rng: &mut Rng, splats: &mut SplatLis
     let Some(em) = light.sample_le(rng.uniform2(), rng.uniform2()) else {
         return;
     };
+    let combined = splats.combined.is_some();
+    let p_l = light_pos_pdf(scene, li as u32);
 
     // ---- The light vertex seen directly by the camera ----
     if let Some(conn) = cam.connect(em.p) {
@@ -43,7 +78,26 @@ pub fn trace(scene: &Scene, max_depth: u32, rng: &mut Rng, splats: &mut SplatLis
             };
             if le.max_element() > 0.0 && visible {
                 let v = le * (cos_l * conn.we_geom * pixels / (em.pdf_pos * pmf));
-                splats.splat(w, h, conn.raster, v);
+                splats.lt.splat(w, h, conn.raster, v);
+                if let Some(c) = splats.combined.as_deref_mut() {
+                    // k = 1: the camera path could hit an area light here, nothing else.
+                    let p0 = if em.n.is_some() {
+                        to_area(
+                            cam.pdf_dir((-conn.dir_to_camera).dot(cam.frame.z)) as f64,
+                            cam.position,
+                            em.p,
+                            em.n,
+                        )
+                    } else {
+                        0.0
+                    };
+                    c.splat(
+                        w,
+                        h,
+                        conn.raster,
+                        v * (weight(p_l, [p0, 0.0, p_l]) / pixels),
+                    );
+                }
             }
         }
     }
@@ -51,7 +105,31 @@ pub fn trace(scene: &Scene, max_depth: u32, rng: &mut Rng, splats: &mut SplatLis
         return;
     }
 
-    let mut beta = em.le * (em.cos_light / (em.pdf_pos * em.pdf_dir * pmf));
+    // ---- Emission direction, guided at area lights ----
+    let (dir, beta) = match em.n {
+        Some(n) => {
+            // The emitted cosine lobe as a Lambertian "BSDF" of albedo 1 about the normal.
+            let lobe = Bsdf::new(Lobes::Diffuse { kd: Rgb::ONE }, n, n);
+            let at = ScatterPoint {
+                p: em.p,
+                bsdf: &lobe,
+                wo: n,
+                mode: TransportMode::Importance,
+                throughput: em.le,
+            };
+            sampler.prepare(&at, state);
+            let Some(s) = sampler.sample(&at, state, rng) else {
+                return;
+            };
+            // Le cos / (pdf_pos pdf_w pmf) = Le π (f cos / pdf_w) / (pdf_pos pmf) with f = 1/π.
+            (s.wi, em.le * s.weight * (PI / (em.pdf_pos * pmf)))
+        }
+        None => (
+            em.dir,
+            em.le * (em.cos_light / (em.pdf_pos * em.pdf_dir * pmf)),
+        ),
+    };
+    let mut beta = beta;
     if !beta.is_finite() || beta.max_element() <= 0.0 {
         return;
     }
@@ -60,7 +138,21 @@ pub fn trace(scene: &Scene, max_depth: u32, rng: &mut Rng, splats: &mut SplatLis
         Some(n) => offset_ray_origin(em.p, n),
         None => em.p,
     };
-    let mut dir = em.dir;
+    let mut dir = dir;
+
+    // ---- Combined-image bookkeeping (see `mis`) ----
+    // l_fwd: light-direction area densities (light position included);
+    // r_prod: camera-direction densities of y_1 .. y_{j-2} (each from its successor);
+    // pf_light: camera-direction density of the light point from y_1 (0 for delta lights).
+    let mut l_fwd = p_l;
+    let mut r_prod = 1.0f64;
+    let mut pf_light = 0.0f64;
+    let mut y1_delta = false;
+    let mut before: [Vtx; 2] = [Vtx {
+        p: em.p,
+        n: em.n,
+        bsdf: None,
+    }; 2];
 
     for depth in 1..max_depth {
         let Some(hit) = scene.intersect(origin, dir, f32::INFINITY) else {
@@ -69,6 +161,36 @@ pub fn trace(scene: &Scene, max_depth: u32, rng: &mut Rng, splats: &mut SplatLis
         let wo = -dir;
         let bsdf = scene.bsdf(&hit);
 
+        if combined {
+            l_fwd *= match before[0].bsdf {
+                None => to_area(light.pdf_le_dir(dir) as f64, em.p, hit.p, Some(hit.ng)),
+                Some(b) => step_area(
+                    &b,
+                    before[0].p,
+                    (before[1].p - before[0].p).normalize_or_zero(),
+                    hit.p,
+                    Some(hit.ng),
+                ),
+            };
+            if depth >= 2 {
+                if let Some(b) = before[0].bsdf {
+                    let d = if depth == 2 && em.n.is_none() {
+                        0.0 // a camera path cannot hit a delta light
+                    } else {
+                        step_area(&b, before[0].p, dir, before[1].p, before[1].n)
+                    };
+                    if depth == 2 {
+                        pf_light = d
+                    } else {
+                        r_prod *= d
+                    }
+                }
+            }
+            if depth == 1 {
+                y1_delta = bsdf.is_delta();
+            }
+        }
+
         // ---- Connect to the camera ----
         if !bsdf.is_delta() {
             if let Some(conn) = cam.connect(hit.p) {
@@ -76,7 +198,32 @@ pub fn trace(scene: &Scene, max_depth: u32, rng: &mut Rng, splats: &mut SplatLis
                 let f = bsdf.eval(wo, wi, TransportMode::Importance);
                 if f.max_element() > 0.0 && scene.visible_from_camera(hit.p, hit.ng) {
                     let v = beta * f * (wi.dot(hit.ns).abs() * conn.we_geom * pixels);
-                    splats.splat(w, h, conn.raster, v);
+                    splats.lt.splat(w, h, conn.raster, v);
+                    if let Some(c) = splats.combined.as_deref_mut() {
+                        let cam_area = to_area(
+                            cam.pdf_dir((-wi).dot(cam.frame.z)) as f64,
+                            cam.position,
+                            hit.p,
+                            Some(hit.ng),
+                        );
+                        let now = if depth == 1 && em.n.is_none() {
+                            0.0
+                        } else {
+                            step_area(&bsdf, hit.p, wi, before[0].p, before[0].n)
+                        };
+                        let (p0, p1) = if depth == 1 {
+                            (cam_area * now, cam_area * p_l)
+                        } else {
+                            let base = cam_area * now * r_prod;
+                            (base * pf_light, if y1_delta { 0.0 } else { base * p_l })
+                        };
+                        c.splat(
+                            w,
+                            h,
+                            conn.raster,
+                            v * (weight(l_fwd, [p0, p1, l_fwd]) / pixels),
+                        );
+                    }
                 }
             }
         }
@@ -85,14 +232,27 @@ pub fn trace(scene: &Scene, max_depth: u32, rng: &mut Rng, splats: &mut SplatLis
         }
 
         // ---- Continue the path ----
-        let Some(s) = bsdf.sample(wo, rng.uniform(), rng.uniform2(), TransportMode::Importance)
-        else {
+        let at = ScatterPoint {
+            p: hit.p,
+            bsdf: &bsdf,
+            wo,
+            mode: TransportMode::Importance,
+            throughput: beta,
+        };
+        sampler.prepare(&at, state);
+        let Some(s) = sampler.sample(&at, state, rng) else {
             break;
         };
         beta *= s.weight;
         if !beta.is_finite() || beta.max_element() <= 0.0 {
             break;
         }
+        before[1] = before[0];
+        before[0] = Vtx {
+            p: hit.p,
+            n: Some(hit.ng),
+            bsdf: Some(bsdf),
+        };
         if depth + 1 >= RR_START_DEPTH {
             let q = (luminance(beta) / beta_start).min(1.0).max(0.05);
             if rng.uniform() >= q {

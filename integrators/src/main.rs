@@ -5,7 +5,7 @@ use clap::{Parser, Subcommand, ValueEnum};
 use footprint::image_io::{write_exr, write_png};
 use footprint::loader::load_scene;
 use footprint::scene::Scene;
-use footprint_integrators::{Integrator, RenderOptions, render};
+use footprint_integrators::{Integrator, RenderOptions};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -67,6 +67,90 @@ enum IntegratorArg {
     Pt,
     /// Light tracing: paths from the lights connected to the camera
     Lt,
+    /// Both, and one image combining them by multiple importance sampling
+    Combined,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum GuideArg {
+    /// The BSDF's own sampling
+    Bsdf,
+    /// Classic photon-map importance sampling on a hemisphere grid (Jensen 1995)
+    Grid,
+    /// Hemispherical particle footprints (Hey & Purgathofer 2001)
+    Footprint,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum RadiusRuleArg {
+    /// The cap's solid angle is k_r over the directional density (particles per steradian)
+    SolidAngle,
+    /// Eq. 7 as printed: radius k_r over the density g/ω
+    Literal,
+}
+
+/// Direction-sampler parameters (paper defaults).
+#[derive(clap::Args, Debug, Clone)]
+struct GuideArgs {
+    /// Direction sampler [default: the scene's render.guide, else bsdf]
+    #[arg(long, value_enum)]
+    guide: Option<GuideArg>,
+    /// Particles per query, k_p [default: the scene's guide.k_p, else 50]
+    #[arg(long)]
+    k_p: Option<usize>,
+    /// Side of the footprint density grid (k_g = side²) [default: guide.k_g, else 32]
+    #[arg(long)]
+    k_g: Option<usize>,
+    /// Footprint radius scale k_r [default: guide.k_r, else 6]
+    #[arg(long, allow_negative_numbers = true)]
+    k_r: Option<f32>,
+    /// Probability of sampling the BSDF where guiding [default: guide.p_bsdf, else 0.3]
+    #[arg(long, allow_negative_numbers = true)]
+    p_bsdf: Option<f32>,
+    /// Footprint radius rule [default: guide.radius_rule, else solid-angle]
+    #[arg(long, value_enum)]
+    radius_rule: Option<RadiusRuleArg>,
+    /// Side of the classic sampler's grid per hemisphere [default: guide.grid, else 8]
+    #[arg(long)]
+    grid: Option<usize>,
+}
+
+impl GuideArgs {
+    fn apply(&self, opts: &mut RenderOptions) -> Result<()> {
+        use footprint::direction_sampler::RadiusRule;
+        use footprint_integrators::Guide;
+        if let Some(g) = self.guide {
+            opts.guide = match g {
+                GuideArg::Bsdf => Guide::Bsdf,
+                GuideArg::Grid => Guide::Grid,
+                GuideArg::Footprint => Guide::Footprint,
+            };
+        }
+        let p = &mut opts.guide_params;
+        if let Some(v) = self.k_p {
+            p.k_p = v;
+        }
+        if let Some(v) = self.k_g {
+            p.k_g_side = v;
+        }
+        if let Some(v) = self.k_r {
+            p.k_r = v;
+        }
+        if let Some(v) = self.p_bsdf {
+            p.p_bsdf = v;
+        }
+        if let Some(v) = self.radius_rule {
+            p.radius_rule = match v {
+                RadiusRuleArg::SolidAngle => RadiusRule::SolidAngle,
+                RadiusRuleArg::Literal => RadiusRule::Literal,
+            };
+        }
+        if let Some(v) = self.grid {
+            p.grid_side = v;
+        }
+        p.validate()
+            .map_err(|e| anyhow::anyhow!("--{}", e.replace('_', "-")))
+    }
 }
 
 #[derive(Subcommand, Debug)]
@@ -100,6 +184,10 @@ enum Command {
         /// Worker threads [default: all cores]
         #[arg(long)]
         threads: Option<usize>,
+        #[command(flatten)]
+        guide: GuideArgs,
+        #[command(flatten)]
+        maps: MapArgs,
     },
     /// Build the photon map and the importance map and write pictures of them seen from the camera
     Maps {
@@ -207,6 +295,8 @@ fn run(cli: Cli) -> Result<()> {
             out,
             exposure,
             threads,
+            guide,
+            maps,
         } => {
             set_threads(threads)?;
             if let Some(t) = time {
@@ -218,15 +308,18 @@ fn run(cli: Cli) -> Result<()> {
                 bail!("--exposure must be finite");
             }
             let t0 = Instant::now();
-            let sc = load_scene(&scene)?;
+            let mut sc = load_scene(&scene)?;
+            maps.apply(&mut sc)?;
             let load_time = t0.elapsed();
             let mut opts = RenderOptions::from_scene(&sc);
             if let Some(i) = integrator {
                 opts.integrator = match i {
                     IntegratorArg::Pt => Integrator::Pt,
                     IntegratorArg::Lt => Integrator::Lt,
+                    IntegratorArg::Combined => Integrator::Combined,
                 };
             }
+            guide.apply(&mut opts)?;
             if let Some(s) = spp {
                 opts.spp = s;
                 opts.time = None;
@@ -372,7 +465,7 @@ fn render_command(
     } else {
         None
     };
-    let result = render(scene, &opts, |f| {
+    let result = footprint_integrators::render_with(scene, &opts, &heap_bytes, |f| {
         if let Some(b) = &bar {
             b.set_position((f * 1000.0) as u64);
         }
@@ -381,6 +474,8 @@ fn render_command(
         b.finish_and_clear();
     }
     let secs = result.elapsed.as_secs_f64();
+    let t = &result.timings;
+    let p = &opts.guide_params;
     let header = vec![
         (
             "footprint/version".to_string(),
@@ -394,6 +489,24 @@ fn render_command(
             "footprint/integrator".to_string(),
             opts.integrator.name().to_string(),
         ),
+        ("footprint/guide".to_string(), opts.guide.name().to_string()),
+        (
+            "footprint/guide_params".to_string(),
+            format!(
+                "k_p={} k_g={}x{} k_r={} p_bsdf={} radius_rule={} grid={}x{} photons={} importons={} max_dist={}",
+                p.k_p,
+                p.k_g_side,
+                p.k_g_side,
+                p.k_r,
+                p.p_bsdf,
+                p.radius_rule.name(),
+                p.grid_side,
+                p.grid_side,
+                scene.maps.photons,
+                scene.maps.importons,
+                scene.map_max_dist()
+            ),
+        ),
         ("footprint/spp".to_string(), result.passes.to_string()),
         (
             "footprint/max_depth".to_string(),
@@ -402,23 +515,67 @@ fn render_command(
         ("footprint/seed".to_string(), opts.seed.to_string()),
         ("footprint/render_time_s".to_string(), format!("{secs:.3}")),
         (
+            "footprint/time_split_s".to_string(),
+            format!(
+                "view_pass={:.3} light_pass={:.3} map_builds={:.3} tracing={:.3}",
+                t.view_pass.as_secs_f64(),
+                t.light_pass.as_secs_f64(),
+                t.map_builds.as_secs_f64(),
+                t.tracing.as_secs_f64()
+            ),
+        ),
+        (
             "footprint/time_budget_s".to_string(),
             opts.time.map(|t| t.to_string()).unwrap_or("none".into()),
         ),
     ];
-    let name = opts.integrator.name();
-    write_exr(out, &[(name, &result.image)], &header)?;
+    let layers: Vec<(&str, &footprint::film::Image)> =
+        result.layers.iter().map(|(n, i)| (*n, i)).collect();
+    write_exr(out, &layers, &header)?;
     let png = out.with_extension("png");
     write_png(&png, &result.image, exposure)?;
+    if terminal {
+        for m in &result.maps {
+            eprintln!("{m}");
+        }
+        if opts.guide == footprint_integrators::Guide::Bsdf {
+            eprintln!("maps: none built (BSDF sampling needs no particle map)");
+        }
+        let g = |name: &str, c: &footprint_integrators::render::GuideCounts| {
+            if c.prepared > 0 {
+                eprintln!(
+                    "{name}: {} scattering events, {} fell back to BSDF sampling ({:.1}%)",
+                    c.prepared,
+                    c.fallbacks,
+                    100.0 * c.fallbacks as f64 / c.prepared as f64
+                );
+            }
+        };
+        g("camera paths", &result.camera_guide);
+        g("light paths", &result.light_guide);
+        eprintln!(
+            "time: view pass {:.2} s, light pass {:.2} s, map builds {:.2} s, tracing {:.2} s",
+            t.view_pass.as_secs_f64(),
+            t.light_pass.as_secs_f64(),
+            t.map_builds.as_secs_f64(),
+            t.tracing.as_secs_f64()
+        );
+    }
+    let fallbacks = result.camera_guide.fallbacks + result.light_guide.fallbacks;
+    let prepared = result.camera_guide.prepared + result.light_guide.prepared;
     println!(
-        "{}: {} {} spp {}x{} in {:.2} s ({:.2} M paths/s), max sample {:.4}, rejected {} -> {}, {}",
+        "{}: {} ({}) {} spp {}x{} in {:.2} s (maps {:.2} s, {:.2} M paths/s), BSDF fallbacks {}/{}, max sample {:.4}, rejected {} -> {}, {}",
         scene_path.display(),
-        name,
+        opts.integrator.name(),
+        opts.guide.name(),
         result.passes,
         cam.width,
         cam.height,
         secs,
-        result.paths as f64 / secs.max(1e-9) / 1e6,
+        (t.view_pass + t.light_pass + t.map_builds).as_secs_f64(),
+        result.paths as f64 / t.tracing.as_secs_f64().max(1e-9) / 1e6,
+        fallbacks,
+        prepared,
         result.stats.max_luminance,
         result.stats.rejected,
         out.display(),
