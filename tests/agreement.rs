@@ -47,6 +47,7 @@ fn path_tracer_and_light_tracer_agree_on_cornell() {
                     max_depth: 6,
                     seed: 7 + r as u64,
                     progress: false,
+                    ..Default::default()
                 };
                 let out = render(&scene, &opts, |_| {});
                 assert!(out.image.all_valid());

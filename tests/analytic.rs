@@ -31,6 +31,7 @@ fn furnace_radiance_is_one_for_both_integrators() {
                 max_depth: 64,
                 seed: 1000 + r as u64,
                 progress: false,
+                ..Default::default()
             };
             let out = render(&scene, &opts, |_| {});
             assert!(out.image.all_valid(), "{integrator:?}: invalid pixel");

@@ -17,6 +17,7 @@ fn opts(integrator: Integrator, spp: u32, seed: u64) -> RenderOptions {
         max_depth: 12,
         seed,
         progress: false,
+        ..Default::default()
     }
 }
 

@@ -108,6 +108,22 @@ pub struct RenderOptions {
     pub progress: bool,
 }
 
+impl Default for RenderOptions {
+    /// Unguided path tracing, 16 samples per pixel, depth 8, seed 0.
+    fn default() -> Self {
+        RenderOptions {
+            integrator: Integrator::Pt,
+            guide: Guide::Bsdf,
+            guide_params: GuideParams::default(),
+            spp: 16,
+            time: None,
+            max_depth: 8,
+            seed: 0,
+            progress: false,
+        }
+    }
+}
+
 impl RenderOptions {
     /// Options from the scene file's render and guide settings.
     pub fn from_scene(scene: &Scene) -> Self {
