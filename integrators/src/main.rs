@@ -181,6 +181,9 @@ enum Command {
         /// Exposure of the PNG preview in stops (the preview is 2^exposure * linear, clamped, sRGB-encoded)
         #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
         exposure: f32,
+        /// Image size WIDTHxHEIGHT, replacing the scene's camera.resolution (same vertical field of view)
+        #[arg(long, value_parser = parse_resolution)]
+        resolution: Option<(u32, u32)>,
         /// Worker threads [default: all cores]
         #[arg(long)]
         threads: Option<usize>,
@@ -262,6 +265,26 @@ impl MapArgs {
     }
 }
 
+fn parse_resolution(s: &str) -> std::result::Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once('x')
+        .ok_or_else(|| format!("expected WIDTHxHEIGHT, got '{s}'"))?;
+    let w: u32 = w
+        .trim()
+        .parse()
+        .map_err(|_| format!("bad width in '{s}'"))?;
+    let h: u32 = h
+        .trim()
+        .parse()
+        .map_err(|_| format!("bad height in '{s}'"))?;
+    if w == 0 || h == 0 || w > 32768 || h > 32768 {
+        return Err(format!(
+            "resolution must be between 1x1 and 32768x32768, got {w}x{h}"
+        ));
+    }
+    Ok((w, h))
+}
+
 fn main() {
     let cli = Cli::parse();
     if let Err(e) = run(cli) {
@@ -294,6 +317,7 @@ fn run(cli: Cli) -> Result<()> {
             seed,
             out,
             exposure,
+            resolution,
             threads,
             guide,
             maps,
@@ -310,6 +334,12 @@ fn run(cli: Cli) -> Result<()> {
             let t0 = Instant::now();
             let mut sc = load_scene(&scene)?;
             maps.apply(&mut sc)?;
+            if let Some((w, h)) = resolution {
+                sc.camera = sc
+                    .camera
+                    .with_resolution(w, h)
+                    .map_err(|e| anyhow::anyhow!("--resolution: {e}"))?;
+            }
             let load_time = t0.elapsed();
             let mut opts = RenderOptions::from_scene(&sc);
             if let Some(i) = integrator {
