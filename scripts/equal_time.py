@@ -3,7 +3,9 @@
 
 Renders a reference once (combined image, BSDF sampling, many passes), then every pair for the
 same wall-clock budget (map passes included) and prints the relative MSE against the
-reference: mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01). Needs numpy and
+reference: mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01), both images first
+divided by the reference's mean (so that the 0.01 means the same in a dark scene such as door
+as in a bright one). Needs numpy and
 mitsuba (for reading EXR): pip install numpy mitsuba.
 
     cargo build --release
@@ -33,6 +35,8 @@ def read_layer(path, layer):
 
 
 def rel_mse(x, ref):
+    scale = 1.0 / max(float(ref.mean()), 1e-12)
+    x, ref = x * scale, ref * scale
     return float(np.mean((x - ref) ** 2 / (ref ** 2 + 1e-2)))
 
 

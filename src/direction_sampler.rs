@@ -17,7 +17,7 @@ use crate::bsdf::{Bsdf, Lobes, TransportMode};
 use crate::math::{Frame, luminance};
 use crate::particle_map::{Neighbor, ParticleMap};
 use crate::rng::Rng;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// A scattering point as the samplers see it.
 #[derive(Clone, Copy, Debug)]
@@ -323,4 +323,89 @@ pub fn mixture_sample(
         weight,
         delta: false,
     })
+}
+
+/// What differs between the particle-guided samplers: how the gathered particles (local
+/// directions and contributions, grazing ones removed) become a distribution of local
+/// directions, stored in the [`GuideState`].
+pub trait ParticleDistribution: Sync {
+    const NAME: &'static str;
+    fn build(&self, particles: &[(Vec3, f32)], params: &GuideParams, state: &mut GuideState);
+    fn sample(&self, state: &GuideState, u_select: f32, u: Vec2) -> Option<Vec3>;
+    fn pdf(&self, state: &GuideState, local: Vec3) -> f32;
+}
+
+/// A particle-guided sampler: queries the map, builds a [`ParticleDistribution`] and mixes it
+/// with the BSDF (see the module documentation). The footprint and grid samplers are this
+/// type with their distributions.
+pub struct ParticleGuide<'m, D> {
+    pub map: &'m ParticleMap,
+    pub params: GuideParams,
+    pub max_dist: f32,
+    pub soft_glossy_max: f32,
+    pub distribution: D,
+}
+
+impl<D: ParticleDistribution> ParticleGuide<'_, D> {
+    fn build(&self, state: &mut GuideState) {
+        let particles = std::mem::take(&mut state.particles);
+        self.distribution.build(&particles, &self.params, state);
+        state.particles = particles;
+    }
+
+    /// Builds the distribution from explicit local particles (tests and benchmarks that
+    /// bypass the map); the same filtering as a map query applies (positive contribution,
+    /// not grazing).
+    pub fn prepare_with(&self, frame: Frame, particles: &[(Vec3, f32)], state: &mut GuideState) {
+        state.particles.clear();
+        let min = self.params.grazing_cos_min;
+        state.particles.extend(
+            particles
+                .iter()
+                .filter(|(d, c)| *c > 0.0 && d.z.abs() >= min),
+        );
+        state.guided = !state.particles.is_empty();
+        state.frame = Some(frame);
+        if state.guided {
+            self.build(state);
+        }
+    }
+}
+
+impl<D: ParticleDistribution> DirectionSampler for ParticleGuide<'_, D> {
+    fn name(&self) -> &'static str {
+        D::NAME
+    }
+
+    fn prepare(&self, at: &ScatterPoint, state: &mut GuideState) {
+        if gather_particles(
+            self.map,
+            &self.params,
+            self.soft_glossy_max,
+            self.max_dist,
+            at,
+            state,
+        ) {
+            self.build(state);
+        }
+    }
+
+    fn sample(&self, at: &ScatterPoint, state: &GuideState, rng: &mut Rng) -> Option<GuideSample> {
+        mixture_sample(self, self.params.p_bsdf, at, state, rng, |rng| {
+            self.distribution
+                .sample(state, rng.uniform(), rng.uniform2())
+        })
+    }
+
+    fn pdf(&self, at: &ScatterPoint, state: &GuideState, wi: Vec3) -> f32 {
+        let p_bsdf = at.bsdf.pdf(at.wo, wi);
+        if !state.guided || at.bsdf.is_delta() {
+            return p_bsdf;
+        }
+        let Some(frame) = state.frame else {
+            return p_bsdf;
+        };
+        let p = self.params.p_bsdf;
+        p * p_bsdf + (1.0 - p) * self.distribution.pdf(state, frame.to_local(wi))
+    }
 }

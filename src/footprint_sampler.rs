@@ -25,12 +25,10 @@
 //!   evaluation.
 
 use crate::direction_sampler::{
-    DirectionSampler, GuideParams, GuideSample, GuideState, RadiusRule, ScatterPoint,
-    gather_particles, mixture_sample,
+    GuideParams, GuideState, ParticleDistribution, ParticleGuide, RadiusRule,
 };
 use crate::math::{PI, safe_sqrt};
 use crate::particle_map::ParticleMap;
-use crate::rng::Rng;
 use glam::{Vec2, Vec3};
 
 /// A footprint: a spherical cap around a particle direction.
@@ -192,16 +190,32 @@ impl FootprintDistribution {
     }
 }
 
-/// The footprint sampler over a particle map.
-pub struct FootprintSampler<'m> {
-    pub map: &'m ParticleMap,
-    pub params: GuideParams,
-    pub max_dist: f32,
-    pub soft_glossy_max: f32,
+/// The footprints as a [`ParticleDistribution`], with the density grid's cell solid angles
+/// computed once.
+pub struct Footprints {
     omega: Vec<f32>,
 }
 
-impl<'m> FootprintSampler<'m> {
+impl ParticleDistribution for Footprints {
+    const NAME: &'static str = "footprint";
+
+    fn build(&self, particles: &[(Vec3, f32)], params: &GuideParams, state: &mut GuideState) {
+        state.footprint.build(particles, params, &self.omega);
+    }
+
+    fn sample(&self, state: &GuideState, u_select: f32, u: Vec2) -> Option<Vec3> {
+        state.footprint.sample(u_select, u)
+    }
+
+    fn pdf(&self, state: &GuideState, local: Vec3) -> f32 {
+        state.footprint.pdf(local)
+    }
+}
+
+/// The footprint sampler over a particle map.
+pub type FootprintSampler<'m> = ParticleGuide<'m, Footprints>;
+
+impl<'m> ParticleGuide<'m, Footprints> {
     pub fn new(
         map: &'m ParticleMap,
         params: GuideParams,
@@ -209,74 +223,12 @@ impl<'m> FootprintSampler<'m> {
         soft_glossy_max: f32,
     ) -> Self {
         let omega = cell_solid_angles(params.k_g_side);
-        FootprintSampler {
+        ParticleGuide {
             map,
             params,
             max_dist,
             soft_glossy_max,
-            omega,
+            distribution: Footprints { omega },
         }
-    }
-
-    /// Builds the footprints from explicit local particles (for tests and benchmarks that
-    /// bypass the map): `state` becomes guided with frame `frame`.
-    pub fn prepare_with(
-        &self,
-        frame: crate::math::Frame,
-        particles: &[(Vec3, f32)],
-        state: &mut GuideState,
-    ) {
-        state.particles.clear();
-        state.particles.extend(
-            particles
-                .iter()
-                .filter(|(d, c)| *c > 0.0 && d.z.abs() >= self.params.grazing_cos_min),
-        );
-        state.guided = !state.particles.is_empty();
-        state.frame = Some(frame);
-        if state.guided {
-            let particles = std::mem::take(&mut state.particles);
-            state.footprint.build(&particles, &self.params, &self.omega);
-            state.particles = particles;
-        }
-    }
-}
-
-impl DirectionSampler for FootprintSampler<'_> {
-    fn name(&self) -> &'static str {
-        "footprint"
-    }
-
-    fn prepare(&self, at: &ScatterPoint, state: &mut GuideState) {
-        if gather_particles(
-            self.map,
-            &self.params,
-            self.soft_glossy_max,
-            self.max_dist,
-            at,
-            state,
-        ) {
-            let particles = std::mem::take(&mut state.particles);
-            state.footprint.build(&particles, &self.params, &self.omega);
-            state.particles = particles;
-        }
-    }
-
-    fn sample(&self, at: &ScatterPoint, state: &GuideState, rng: &mut Rng) -> Option<GuideSample> {
-        mixture_sample(self, self.params.p_bsdf, at, state, rng, |rng| {
-            state.footprint.sample(rng.uniform(), rng.uniform2())
-        })
-    }
-
-    fn pdf(&self, at: &ScatterPoint, state: &GuideState, wi: Vec3) -> f32 {
-        let p_bsdf = at.bsdf.pdf(at.wo, wi);
-        if !state.guided || at.bsdf.is_delta() {
-            return p_bsdf;
-        }
-        let Some(frame) = state.frame else {
-            return p_bsdf;
-        };
-        let p = self.params.p_bsdf;
-        p * p_bsdf + (1.0 - p) * state.footprint.pdf(frame.to_local(wi))
     }
 }

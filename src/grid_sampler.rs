@@ -8,13 +8,9 @@
 //! `2π / side²`, a direction uniform in the cell's square is uniform in solid angle, and the
 //! pdf is the cell's share of the contributions over the cell's solid angle.
 
-use crate::direction_sampler::{
-    DirectionSampler, GuideParams, GuideSample, GuideState, ScatterPoint, gather_particles,
-    mixture_sample,
-};
+use crate::direction_sampler::{GuideParams, GuideState, ParticleDistribution, ParticleGuide};
 use crate::math::{PI, safe_sqrt};
 use crate::particle_map::ParticleMap;
-use crate::rng::Rng;
 use glam::{Vec2, Vec3};
 
 /// The cell grid of both hemispheres at one point (local frame).
@@ -107,81 +103,41 @@ impl GridDistribution {
     }
 }
 
-/// The classic grid sampler over a particle map.
-pub struct GridSampler<'m> {
-    pub map: &'m ParticleMap,
-    pub params: GuideParams,
-    pub max_dist: f32,
-    pub soft_glossy_max: f32,
+/// The grid as a [`ParticleDistribution`].
+pub struct GridCells;
+
+impl ParticleDistribution for GridCells {
+    const NAME: &'static str = "grid";
+
+    fn build(&self, particles: &[(Vec3, f32)], params: &GuideParams, state: &mut GuideState) {
+        state.grid.build(particles, params.grid_side);
+    }
+
+    fn sample(&self, state: &GuideState, u_select: f32, u: Vec2) -> Option<Vec3> {
+        state.grid.sample(u_select, u)
+    }
+
+    fn pdf(&self, state: &GuideState, local: Vec3) -> f32 {
+        state.grid.pdf(local)
+    }
 }
 
-impl<'m> GridSampler<'m> {
+/// The classic grid sampler over a particle map.
+pub type GridSampler<'m> = ParticleGuide<'m, GridCells>;
+
+impl<'m> ParticleGuide<'m, GridCells> {
     pub fn new(
         map: &'m ParticleMap,
         params: GuideParams,
         max_dist: f32,
         soft_glossy_max: f32,
     ) -> Self {
-        GridSampler {
+        ParticleGuide {
             map,
             params,
             max_dist,
             soft_glossy_max,
+            distribution: GridCells,
         }
-    }
-
-    /// Builds the grid from explicit local particles (tests and benchmarks).
-    pub fn prepare_with(
-        &self,
-        frame: crate::math::Frame,
-        particles: &[(Vec3, f32)],
-        state: &mut GuideState,
-    ) {
-        state.particles.clear();
-        state
-            .particles
-            .extend(particles.iter().filter(|(_, c)| *c > 0.0));
-        state.guided = !state.particles.is_empty();
-        state.frame = Some(frame);
-        if state.guided {
-            state.grid.build(&state.particles, self.params.grid_side);
-        }
-    }
-}
-
-impl DirectionSampler for GridSampler<'_> {
-    fn name(&self) -> &'static str {
-        "grid"
-    }
-
-    fn prepare(&self, at: &ScatterPoint, state: &mut GuideState) {
-        if gather_particles(
-            self.map,
-            &self.params,
-            self.soft_glossy_max,
-            self.max_dist,
-            at,
-            state,
-        ) {
-            state.grid.build(&state.particles, self.params.grid_side);
-        }
-    }
-
-    fn sample(&self, at: &ScatterPoint, state: &GuideState, rng: &mut Rng) -> Option<GuideSample> {
-        mixture_sample(self, self.params.p_bsdf, at, state, rng, |rng| {
-            state.grid.sample(rng.uniform(), rng.uniform2())
-        })
-    }
-
-    fn pdf(&self, at: &ScatterPoint, state: &GuideState, wi: Vec3) -> f32 {
-        let p_bsdf = at.bsdf.pdf(at.wo, wi);
-        if !state.guided || at.bsdf.is_delta() {
-            return p_bsdf;
-        }
-        let Some(frame) = state.frame else {
-            return p_bsdf;
-        };
-        let p = self.params.p_bsdf;
-        p * p_bsdf + (1.0 - p) * state.grid.pdf(frame.to_local(wi))
     }
 }

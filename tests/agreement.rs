@@ -14,21 +14,6 @@ use common::{scene_path, sidak, t_critical};
 use footprint::loader::load_scene;
 use footprint_integrators::{Integrator, RenderOptions, render};
 
-fn region_means(img: &footprint::film::Image, block: u32) -> Vec<[f64; 3]> {
-    let (bw, bh) = (img.width / block, img.height / block);
-    let mut out = vec![[0.0f64; 3]; (bw * bh) as usize];
-    for y in 0..bh * block {
-        for x in 0..bw * block {
-            let p = img.get(x, y);
-            let r = &mut out[((y / block) * bw + x / block) as usize];
-            for c in 0..3 {
-                r[c] += p[c] as f64 / (block * block) as f64;
-            }
-        }
-    }
-    out
-}
-
 #[test]
 fn path_tracer_and_light_tracer_agree_on_cornell() {
     let mut scene = load_scene(&scene_path("cornell")).expect("cornell loads");
@@ -51,7 +36,7 @@ fn path_tracer_and_light_tracer_agree_on_cornell() {
                 };
                 let out = render(&scene, &opts, |_| {});
                 assert!(out.image.all_valid());
-                region_means(&out.image, block)
+                common::region_means(&out.image, 64 / block)
             })
             .collect()
     };

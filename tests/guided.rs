@@ -10,7 +10,6 @@
 mod common;
 
 use common::{mean_stderr, scene_path, sidak, t_critical};
-use footprint::film::Image;
 use footprint::loader::load_scene;
 use footprint::scene::Scene;
 use footprint_integrators::{Guide, Integrator, RenderOptions, render};
@@ -54,21 +53,6 @@ fn opts(
     }
 }
 
-fn regions(img: &Image, side: u32) -> Vec<[f64; 3]> {
-    let (bw, bh) = (img.width / side, img.height / side);
-    let mut out = vec![[0.0f64; 3]; (side * side) as usize];
-    for y in 0..bh * side {
-        for x in 0..bw * side {
-            let p = img.get(x, y);
-            let r = &mut out[((y / bh) * side + x / bw) as usize];
-            for c in 0..3 {
-                r[c] += p[c] as f64 / (bw * bh) as f64;
-            }
-        }
-    }
-    out
-}
-
 fn agreement(scene: &Scene, side: u32, renders: usize, spp: u32, max_depth: u32) {
     let replicate = |integrator, guide, seed: u64| -> Vec<Vec<[f64; 3]>> {
         (0..renders)
@@ -82,7 +66,7 @@ fn agreement(scene: &Scene, side: u32, renders: usize, spp: u32, max_depth: u32)
                     out.image.all_valid(),
                     "{integrator:?} {guide:?}: invalid pixel"
                 );
-                regions(&out.image, side)
+                common::region_means(&out.image, side)
             })
             .collect()
     };
@@ -192,40 +176,6 @@ fn guided_images_do_not_depend_on_the_thread_count() {
     }
 }
 
-/// OBJ text of an axis-aligned box with outward faces.
-fn box_obj(lo: [f32; 3], hi: [f32; 3], first: usize, material: &str) -> String {
-    let mut s = String::new();
-    for i in 0..8 {
-        let v = [
-            if i & 1 == 0 { lo[0] } else { hi[0] },
-            if i & 2 == 0 { lo[1] } else { hi[1] },
-            if i & 4 == 0 { lo[2] } else { hi[2] },
-        ];
-        s += &format!("v {} {} {}\n", v[0], v[1], v[2]);
-    }
-    s += &format!("usemtl {material}\n");
-    for q in [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ] {
-        let v = |i: usize| q[i] + first;
-        s += &format!(
-            "f {} {} {}\nf {} {} {}\n",
-            v(0),
-            v(1),
-            v(2),
-            v(0),
-            v(2),
-            v(3)
-        );
-    }
-    s
-}
-
 /// A scene built to be hard: the only light shines through a slit a few pixels wide, a
 /// floor lit at grazing angles, a Blinn panel of exponent 10^4, a coloured glass block.
 fn hard_scene() -> Scene {
@@ -237,7 +187,7 @@ fn hard_scene() -> Scene {
     let mut obj = "mtllib m.mtl\n".to_string();
     let mut n = 1;
     let mut add = |lo: [f32; 3], hi: [f32; 3], m: &str| {
-        obj += &box_obj(lo, hi, n, m);
+        obj += &common::box_obj(lo, hi, n, m);
         n += 8;
     };
     // Room 4 x 2.5 x 4 of thick walls.

@@ -412,42 +412,6 @@ fn temp_dir(name: &str) -> PathBuf {
     d
 }
 
-/// OBJ text of an axis-aligned box with outward faces.
-fn box_obj(lo: Vec3, hi: Vec3, first_vertex: usize, material: &str) -> String {
-    let mut s = String::new();
-    for i in 0..8 {
-        let v = Vec3::new(
-            if i & 1 == 0 { lo.x } else { hi.x },
-            if i & 2 == 0 { lo.y } else { hi.y },
-            if i & 4 == 0 { lo.z } else { hi.z },
-        );
-        s += &format!("v {} {} {}\n", v.x, v.y, v.z);
-    }
-    s += &format!("usemtl {material}\n");
-    // Faces as quads (a, b, c, d) counter-clockwise seen from outside.
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    for q in quads {
-        let v = |i: usize| q[i] + first_vertex;
-        s += &format!(
-            "f {} {} {}\nf {} {} {}\n",
-            v(0),
-            v(1),
-            v(2),
-            v(0),
-            v(2),
-            v(3)
-        );
-    }
-    s
-}
-
 /// Behind a coloured glass pane, importons carry the pane's colour: an importon that reached
 /// the wall through the pane (a specular chain through both interfaces) has `W_p` in the
 /// ratio of `Tf`; one that reached it directly has grey `W_p`.
@@ -460,18 +424,8 @@ fn importons_behind_coloured_glass_carry_its_colour() {
         tf.x, tf.y, tf.z
     );
     let mut obj = "mtllib m.mtl\n".to_string();
-    obj += &box_obj(
-        Vec3::new(-0.5, -0.5, -0.05),
-        Vec3::new(0.5, 0.5, 0.05),
-        1,
-        "glass",
-    );
-    obj += &box_obj(
-        Vec3::new(-3.0, -3.0, 2.0),
-        Vec3::new(3.0, 3.0, 2.2),
-        9,
-        "wall",
-    );
+    obj += &common::box_obj([-0.5, -0.5, -0.05], [0.5, 0.5, 0.05], 1, "glass");
+    obj += &common::box_obj([-3.0, -3.0, 2.0], [3.0, 3.0, 2.2], 9, "wall");
     std::fs::write(d.join("m.mtl"), mtl).unwrap();
     std::fs::write(d.join("g.obj"), obj).unwrap();
     let toml = "[camera]\nposition = [0.0, 0.0, -3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 40.0\nresolution = [64, 64]\n\

@@ -157,6 +157,57 @@ pub fn chi2_sf(chi2: f64, dof: f64) -> f64 {
     gamma_q(dof / 2.0, chi2 / 2.0)
 }
 
+/// Means over a `side x side` grid of image regions, per channel.
+pub fn region_means(img: &footprint::film::Image, side: u32) -> Vec<[f64; 3]> {
+    let (bw, bh) = (img.width / side, img.height / side);
+    let mut out = vec![[0.0f64; 3]; (side * side) as usize];
+    for y in 0..bh * side {
+        for x in 0..bw * side {
+            let p = img.get(x, y);
+            let r = &mut out[((y / bh) * side + x / bw) as usize];
+            for c in 0..3 {
+                r[c] += p[c] as f64 / (bw * bh) as f64;
+            }
+        }
+    }
+    out
+}
+
+/// OBJ text of an axis-aligned box with outward faces (vertices numbered from `first`).
+pub fn box_obj(lo: [f32; 3], hi: [f32; 3], first: usize, material: &str) -> String {
+    let mut s = String::new();
+    for i in 0..8 {
+        let v = [
+            if i & 1 == 0 { lo[0] } else { hi[0] },
+            if i & 2 == 0 { lo[1] } else { hi[1] },
+            if i & 4 == 0 { lo[2] } else { hi[2] },
+        ];
+        s += &format!("v {} {} {}\n", v[0], v[1], v[2]);
+    }
+    s += &format!("usemtl {material}\n");
+    // Faces as quads counter-clockwise seen from outside, split in two triangles.
+    for q in [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ] {
+        let v = |i: usize| q[i] + first;
+        s += &format!(
+            "f {} {} {}\nf {} {} {}\n",
+            v(0),
+            v(1),
+            v(2),
+            v(0),
+            v(2),
+            v(3)
+        );
+    }
+    s
+}
+
 /// Mean and standard error of the mean of `xs`.
 pub fn mean_stderr(xs: &[f64]) -> (f64, f64) {
     let n = xs.len() as f64;
