@@ -75,20 +75,15 @@ impl Effects {
         ]
     }
 
-    /// What the renderer skips because of absent effects (one line each).
+    /// What the renderer skips because of absent effects (one line each): only code paths
+    /// that are actually guarded by the analysis are listed.
     pub fn skipped(&self) -> Vec<&'static str> {
         let mut s = Vec::new();
         if !self.area_lights {
-            s.push("emission lookups and MIS at surface hits (no area lights)");
+            s.push("emission lookups and MIS weights at surface hits (no area lights)");
         }
         if !self.textures {
             s.push("texture lookups (no textures)");
-        }
-        if !self.specular_reflection && !self.refraction {
-            s.push("specular-chain bookkeeping (no mirror or glass)");
-        }
-        if !self.glossy {
-            s.push("glossy lobe evaluation (no glossy materials)");
         }
         s
     }

@@ -84,7 +84,7 @@ fn effect_analysis_is_right_for_each_scene() {
             .effects
             .skipped()
             .iter()
-            .any(|s| s.contains("no glossy"))
+            .any(|s| s.contains("no textures"))
     );
     assert!(
         !cornell
