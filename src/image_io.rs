@@ -149,3 +149,14 @@ pub fn read_exr(path: &Path) -> Result<Image> {
         pixels,
     })
 }
+
+/// A text attribute of an EXR's header (as [`write_exr`] writes them), if present.
+pub fn read_exr_text_attribute(path: &Path, key: &str) -> Option<String> {
+    use exr::meta::attribute::{AttributeValue, Text};
+    let meta = exr::meta::MetaData::read_from_file(path, false).ok()?;
+    let header = meta.headers.first()?;
+    match header.shared_attributes.other.get(&Text::from(key))? {
+        AttributeValue::Text(t) => Some(t.to_string()),
+        _ => None,
+    }
+}

@@ -1,6 +1,7 @@
 //! Integrators of footprint and the driver that runs them over the film.
 //!
 //! * [`path_tracer`]: paths from the camera with next-event estimation and MIS;
+//! * [`compare`]: equal-time comparisons, error against time, parameter sweeps;
 //! * [`light_tracer`]: paths from the lights, every non-specular vertex connected to the
 //!   pinhole camera and splatted onto the film;
 //! * [`maps`]: building the maps and their pictures;
@@ -8,6 +9,7 @@
 //! * [`passes`]: the light pass (photon map) and the view pass (importance map);
 //! * [`render`]: passes, threads, time budgets, progress, and the run summary.
 
+pub mod compare;
 pub mod light_tracer;
 pub mod maps;
 pub mod mis;

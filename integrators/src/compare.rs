@@ -1,0 +1,419 @@
+//! `footprint compare`: every method on one scene at equal wall-clock time (the passes that
+//! build the particle maps included), against a reference, with the error measured at a
+//! ladder of times; written as a table (CSV and JSON), a log-log convergence plot (SVG) and
+//! a self-contained HTML page. The shape follows SmallVCM's equal-time report and pbrt-v4's
+//! `--mse-reference-image`.
+//!
+//! Metrics against the reference `R` (per pixel and channel, image `X`):
+//! * relative MSE: mean of `(X - R)² / (R² + 0.01)`, both images first divided by the
+//!   reference's mean so that the `0.01` means the same in dark and bright scenes;
+//! * mean absolute error: mean of `|X - R|`;
+//! * spots (the paper's word, fireflies): pixels whose luminance error exceeds
+//!   [`SPOT_FACTOR`] times the reference luminance plus 1% of the reference's mean.
+
+use crate::render::{Guide, Integrator, RenderOptions, render};
+use anyhow::{Context, Result, bail};
+use footprint::film::Image;
+use footprint::image_io::{read_exr, write_exr, write_png};
+use footprint::math::luminance;
+use footprint::scene::Scene;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// A pixel is a spot when its luminance error exceeds this multiple of the reference
+/// luminance (plus 1% of the reference mean).
+pub const SPOT_FACTOR: f32 = 4.0;
+
+/// Relative MSE (see the module doc).
+pub fn rel_mse(x: &Image, r: &Image) -> f64 {
+    let m = luminance(r.mean()).max(1e-20) as f64;
+    let mut sum = 0.0f64;
+    for (a, b) in x.pixels.iter().zip(&r.pixels) {
+        for c in 0..3 {
+            let (a, b) = (a[c] as f64 / m, b[c] as f64 / m);
+            sum += (a - b) * (a - b) / (b * b + 0.01);
+        }
+    }
+    sum / (3 * r.pixels.len()) as f64
+}
+
+/// Mean absolute error over pixels and channels.
+pub fn mae(x: &Image, r: &Image) -> f64 {
+    let sum: f64 = x.pixels.iter().zip(&r.pixels).map(|(a, b)| (*a - *b).abs().element_sum() as f64).sum();
+    sum / (3 * r.pixels.len()) as f64
+}
+
+/// Number of spots (see the module doc).
+pub fn spots(x: &Image, r: &Image) -> usize {
+    let floor = 0.01 * luminance(r.mean());
+    x.pixels
+        .iter()
+        .zip(&r.pixels)
+        .filter(|(a, b)| {
+            let (la, lb) = (luminance(**a), luminance(**b));
+            (la - lb).abs() > SPOT_FACTOR * lb + floor
+        })
+        .count()
+}
+
+/// A method: an integrator with a direction sampler.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Method {
+    pub integrator: Integrator,
+    pub guide: Guide,
+}
+
+impl Method {
+    pub fn name(&self) -> String {
+        format!("{}-{}", self.integrator.name(), self.guide.name())
+    }
+
+    pub fn parse(s: &str) -> Option<Self> {
+        let (i, g) = s.split_once('-')?;
+        Some(Method { integrator: Integrator::parse(i)?, guide: Guide::parse(g)? })
+    }
+
+    /// Path and light tracing with each guide, and the combined image with footprints.
+    pub fn all() -> Vec<Method> {
+        let mut v = Vec::new();
+        for integrator in [Integrator::Pt, Integrator::Lt] {
+            for guide in [Guide::Bsdf, Guide::Grid, Guide::Footprint] {
+                v.push(Method { integrator, guide });
+            }
+        }
+        v.push(Method { integrator: Integrator::Combined, guide: Guide::Footprint });
+        v
+    }
+}
+
+/// One curve of the comparison: a method, possibly with changed parameters (a sweep).
+#[derive(Clone, Debug)]
+pub struct Variant {
+    pub label: String,
+    pub opts: RenderOptions,
+    pub maps: footprint::scene::MapSettings,
+}
+
+/// Settings of a comparison.
+#[derive(Clone, Debug)]
+pub struct CompareSettings {
+    pub variants: Vec<Variant>,
+    /// Wall-clock budgets, ascending; the last is "equal time".
+    pub ladder: Vec<f64>,
+    /// Samples per pixel of the reference (combined image, BSDF sampling).
+    pub reference_spp: u32,
+    pub out: PathBuf,
+    pub seed: u64,
+}
+
+/// One measured point.
+#[derive(Clone, Debug)]
+pub struct Row {
+    pub method: String,
+    pub time_budget: f64,
+    pub seconds: f64,
+    pub map_seconds: f64,
+    pub tracing_seconds: f64,
+    pub spp: u32,
+    pub rel_mse: f64,
+    pub mae: f64,
+    pub spots: usize,
+}
+
+/// A short text that identifies what a reference was rendered from: the scene files'
+/// contents, the resolution, depth and reference settings.
+pub fn reference_key(scene_path: &Path, scene: &Scene, spp: u32, max_depth: u32) -> Result<String> {
+    let mut h: u64 = 0xcbf29ce484222325;
+    let mut eat = |bytes: &[u8]| {
+        for b in bytes {
+            h ^= *b as u64;
+            h = h.wrapping_mul(0x100000001b3);
+        }
+    };
+    let text = std::fs::read(scene_path).with_context(|| format!("cannot read {}", scene_path.display()))?;
+    eat(&text);
+    // The meshes the scene names (and their materials), by content.
+    let dir = scene_path.parent().unwrap_or(Path::new("."));
+    for line in String::from_utf8_lossy(&text).lines() {
+        let l = line.trim();
+        if let Some(rest) = l.strip_prefix("file") {
+            let f = rest.trim_start_matches([' ', '=']).trim().trim_matches('"');
+            let p = dir.join(f);
+            if let Ok(obj) = std::fs::read(&p) {
+                eat(&obj);
+                if let Ok(mtl) = std::fs::read(p.with_extension("mtl")) {
+                    eat(&mtl);
+                }
+            }
+        }
+    }
+    Ok(format!(
+        "scene={h:016x} res={}x{} spp={spp} max_depth={max_depth} method=combined-bsdf v{}",
+        scene.camera.width,
+        scene.camera.height,
+        env!("CARGO_PKG_VERSION")
+    ))
+}
+
+/// Reads the key a cached reference was written with.
+fn cached_key(path: &Path) -> Option<String> {
+    footprint::image_io::read_exr_text_attribute(path, "footprint/reference_key")
+}
+
+/// The reference: `given`, or the cache next to the scene when its key matches, or a fresh
+/// render (written to the cache). Returns the image and where it came from.
+pub fn reference(scene_path: &Path, scene: &Scene, given: Option<&Path>, spp: u32, max_depth: u32, log: &mut dyn FnMut(&str)) -> Result<(Image, String)> {
+    if let Some(p) = given {
+        let img = read_exr(p)?;
+        if img.width != scene.camera.width || img.height != scene.camera.height {
+            bail!(
+                "reference {} is {}x{}, the render is {}x{} (use --resolution)",
+                p.display(),
+                img.width,
+                img.height,
+                scene.camera.width,
+                scene.camera.height
+            );
+        }
+        return Ok((img, format!("given: {}", p.display())));
+    }
+    let key = reference_key(scene_path, scene, spp, max_depth)?;
+    let stem = scene_path.file_stem().map(|s| s.to_string_lossy().to_string()).unwrap_or("scene".into());
+    let cache = scene_path.with_file_name(format!(".{stem}-reference-{}x{}.exr", scene.camera.width, scene.camera.height));
+    if cache.exists() {
+        if cached_key(&cache).as_deref() == Some(key.as_str()) {
+            if let Ok(img) = read_exr(&cache) {
+                return Ok((img, format!("cached: {}", cache.display())));
+            }
+        }
+        log(&format!("reference cache {} is stale (scene or settings changed): rendering it again", cache.display()));
+    }
+    log(&format!("rendering the reference: combined image, BSDF sampling, {spp} spp"));
+    let opts = RenderOptions { integrator: Integrator::Combined, guide: Guide::Bsdf, spp, max_depth, seed: 0x5eed, ..Default::default() };
+    let r = render(scene, &opts, |_| {});
+    write_exr(&cache, &[("combined", &r.image)], &[("footprint/reference_key".into(), key)])
+        .with_context(|| format!("cannot write the reference cache {}", cache.display()))?;
+    Ok((r.image, format!("rendered: {} ({:.1} s)", cache.display(), r.elapsed.as_secs_f64())))
+}
+
+/// Least-squares slope of log(error) against log(time).
+pub fn log_log_slope(points: &[(f64, f64)]) -> Option<f64> {
+    let pts: Vec<(f64, f64)> = points.iter().filter(|(t, e)| *t > 0.0 && *e > 0.0).map(|(t, e)| (t.ln(), e.ln())).collect();
+    if pts.len() < 2 {
+        return None;
+    }
+    let n = pts.len() as f64;
+    let (mx, my) = (pts.iter().map(|p| p.0).sum::<f64>() / n, pts.iter().map(|p| p.1).sum::<f64>() / n);
+    let sxx: f64 = pts.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
+    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    (sxx > 0.0).then(|| sxy / sxx)
+}
+
+/// Time a method needs to reach `target` error, on its log-log line through the last point
+/// with the fitted slope (extrapolated when the ladder did not reach it).
+pub fn time_to_reach(points: &[(f64, f64)], target: f64) -> Option<f64> {
+    let slope = log_log_slope(points)?;
+    if slope >= 0.0 {
+        return None;
+    }
+    let (t, e) = *points.last()?;
+    Some(t * (target / e).powf(1.0 / slope))
+}
+
+/// False-colour error image: |X - R| / (R + 1% mean) in luminance, through a blue-red ramp.
+fn error_image(x: &Image, r: &Image) -> Image {
+    let floor = 0.01 * luminance(r.mean()).max(1e-20);
+    let mut out = Image::new(r.width, r.height);
+    for ((o, a), b) in out.pixels.iter_mut().zip(&x.pixels).zip(&r.pixels) {
+        let e = ((luminance(*a) - luminance(*b)).abs() / (luminance(*b) + floor)).min(1.0);
+        *o = footprint::Rgb::new(e, 0.2 * (1.0 - e), 1.0 - e) * 0.8;
+    }
+    out
+}
+
+/// An exposure that maps the reference's mean to mid-grey in the previews.
+fn preview_exposure(r: &Image) -> f32 {
+    let m = luminance(r.mean()).max(1e-12);
+    (0.18 / m).log2()
+}
+
+fn csv(rows: &[Row]) -> String {
+    let mut s = String::from("method,time_budget_s,seconds,map_seconds,tracing_seconds,spp,rel_mse,mae,spots\n");
+    for r in rows {
+        let _ = writeln!(s, "{},{},{:.4},{:.4},{:.4},{},{:.6e},{:.6e},{}", r.method, r.time_budget, r.seconds, r.map_seconds, r.tracing_seconds, r.spp, r.rel_mse, r.mae, r.spots);
+    }
+    s
+}
+
+fn json(scene: &str, reference: &str, rows: &[Row], summary: &[(String, Option<f64>, Option<f64>)], target: f64) -> String {
+    let esc = |s: &str| s.replace('\\', "\\\\").replace('"', "\\\"");
+    let num = |v: Option<f64>| v.filter(|x| x.is_finite()).map(|x| format!("{x:.6e}")).unwrap_or("null".into());
+    let mut s = format!("{{\n  \"scene\": \"{}\",\n  \"reference\": \"{}\",\n  \"spot_factor\": {SPOT_FACTOR},\n  \"target_rel_mse\": {target:.6e},\n  \"rows\": [\n", esc(scene), esc(reference));
+    for (i, r) in rows.iter().enumerate() {
+        let _ = write!(
+            s,
+            "    {{\"method\": \"{}\", \"time_budget_s\": {}, \"seconds\": {:.4}, \"map_seconds\": {:.4}, \"tracing_seconds\": {:.4}, \"spp\": {}, \"rel_mse\": {:.6e}, \"mae\": {:.6e}, \"spots\": {}}}{}\n",
+            r.method, r.time_budget, r.seconds, r.map_seconds, r.tracing_seconds, r.spp, r.rel_mse, r.mae, r.spots,
+            if i + 1 < rows.len() { "," } else { "" }
+        );
+    }
+    s += "  ],\n  \"methods\": [\n";
+    for (i, (m, slope, t)) in summary.iter().enumerate() {
+        let _ = write!(s, "    {{\"method\": \"{m}\", \"slope\": {}, \"time_to_target_s\": {}}}{}\n", num(*slope), num(*t), if i + 1 < summary.len() { "," } else { "" });
+    }
+    s += "  ]\n}\n";
+    s
+}
+
+/// A log-log plot of error against time, one polyline per method.
+pub fn convergence_svg(rows: &[Row], methods: &[String]) -> String {
+    let (w, h, l, b, t, rgt) = (640.0, 420.0, 70.0, 50.0, 20.0, 170.0);
+    let pts: Vec<(f64, f64)> = rows.iter().filter(|r| r.rel_mse > 0.0).map(|r| (r.seconds.max(1e-3).log10(), r.rel_mse.log10())).collect();
+    if pts.is_empty() {
+        return format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\"></svg>\n");
+    }
+    let (x0, x1) = (pts.iter().map(|p| p.0).fold(f64::MAX, f64::min).floor(), pts.iter().map(|p| p.0).fold(f64::MIN, f64::max).ceil().max(0.0));
+    let (y0, y1) = (pts.iter().map(|p| p.1).fold(f64::MAX, f64::min).floor(), pts.iter().map(|p| p.1).fold(f64::MIN, f64::max).ceil());
+    let (x1, y1) = (if x1 <= x0 { x0 + 1.0 } else { x1 }, if y1 <= y0 { y0 + 1.0 } else { y1 });
+    let px = |x: f64| l + (x - x0) / (x1 - x0) * (w - l - rgt);
+    let py = |y: f64| t + (y1 - y) / (y1 - y0) * (h - t - b);
+    let colours = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"];
+    let mut s = format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
+    // Axes and decade grid.
+    let mut d = x0;
+    while d <= x1 + 1e-9 {
+        let _ = writeln!(s, "<line x1=\"{0:.1}\" y1=\"{1:.1}\" x2=\"{0:.1}\" y2=\"{2:.1}\" stroke=\"#ddd\"/><text x=\"{0:.1}\" y=\"{3:.1}\" text-anchor=\"middle\">{4}</text>", px(d), py(y1), py(y0), h - b + 16.0, fmt_decade(d));
+        d += 1.0;
+    }
+    let mut d = y0;
+    while d <= y1 + 1e-9 {
+        let _ = writeln!(s, "<line x1=\"{0:.1}\" y1=\"{1:.1}\" x2=\"{2:.1}\" y2=\"{1:.1}\" stroke=\"#ddd\"/><text x=\"{3:.1}\" y=\"{4:.1}\" text-anchor=\"end\">{5}</text>", px(x0), py(d), px(x1), l - 6.0, py(d) + 4.0, fmt_decade(d));
+        d += 1.0;
+    }
+    let _ = writeln!(s, "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">wall-clock time (s, maps included)</text>", (l + w - rgt) / 2.0, h - 8.0);
+    let _ = writeln!(s, "<text x=\"16\" y=\"{:.1}\" transform=\"rotate(-90 16 {:.1})\" text-anchor=\"middle\">relative MSE</text>", (t + h - b) / 2.0, (t + h - b) / 2.0);
+    for (i, m) in methods.iter().enumerate() {
+        let c = colours[i % colours.len()];
+        let line: Vec<String> = rows
+            .iter()
+            .filter(|r| &r.method == m && r.rel_mse > 0.0)
+            .map(|r| format!("{:.1},{:.1}", px(r.seconds.max(1e-3).log10()), py(r.rel_mse.log10())))
+            .collect();
+        let _ = writeln!(s, "<polyline class=\"method\" fill=\"none\" stroke=\"{c}\" stroke-width=\"2\" points=\"{}\"/>", line.join(" "));
+        for p in &line {
+            let (x, y) = p.split_once(',').unwrap();
+            let _ = writeln!(s, "<circle cx=\"{x}\" cy=\"{y}\" r=\"3\" fill=\"{c}\"/>");
+        }
+        let _ = writeln!(s, "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"14\" height=\"4\" fill=\"{c}\"/><text x=\"{:.1}\" y=\"{:.1}\">{m}</text>", w - rgt + 15.0, t + 10.0 + 18.0 * i as f64, w - rgt + 34.0, t + 15.0 + 18.0 * i as f64);
+    }
+    s += "</svg>\n";
+    s
+}
+
+fn fmt_decade(d: f64) -> String {
+    format!("1e{}", d.round() as i64)
+}
+
+/// Runs the comparison and writes every file; returns the rows.
+pub fn run(scene_path: &Path, scene: &mut Scene, given_ref: Option<&Path>, s: &CompareSettings, max_depth: u32, log: &mut dyn FnMut(&str)) -> Result<Vec<Row>> {
+    std::fs::create_dir_all(&s.out).with_context(|| format!("cannot create {}", s.out.display()))?;
+    let (reference, ref_source) = reference(scene_path, scene, given_ref, s.reference_spp, max_depth, log)?;
+    let exposure = preview_exposure(&reference);
+    write_png(&s.out.join("reference.png"), &reference, exposure)?;
+    let total_runs = s.variants.len() * s.ladder.len();
+    let budget: f64 = s.ladder.iter().sum::<f64>() * s.variants.len() as f64;
+    let mut spent = 0.0;
+    let mut rows = Vec::new();
+    let scene_maps = scene.maps.clone();
+    for (mi, v) in s.variants.iter().enumerate() {
+        scene.maps = v.maps.clone();
+        for (li, &t) in s.ladder.iter().enumerate() {
+            let run_index = mi * s.ladder.len() + li + 1;
+            log(&format!("[{run_index}/{total_runs}] {} for {t} s (about {:.0} s left)", v.label, budget - spent));
+            let opts = RenderOptions { time: Some(t), seed: s.seed, max_depth, ..v.opts.clone() };
+            let r = render(scene, &opts, |_| {});
+            spent += t;
+            let tm = &r.timings;
+            rows.push(Row {
+                method: v.label.clone(),
+                time_budget: t,
+                seconds: r.elapsed.as_secs_f64(),
+                map_seconds: (tm.view_pass + tm.light_pass + tm.map_builds).as_secs_f64(),
+                tracing_seconds: tm.tracing.as_secs_f64(),
+                spp: r.passes,
+                rel_mse: rel_mse(&r.image, &reference),
+                mae: mae(&r.image, &reference),
+                spots: spots(&r.image, &reference),
+            });
+            if li + 1 == s.ladder.len() {
+                write_png(&s.out.join(format!("{}.png", v.label)), &r.image, exposure)?;
+                write_png(&s.out.join(format!("{}-error.png", v.label)), &error_image(&r.image, &reference), 0.0)?;
+            }
+        }
+    }
+    scene.maps = scene_maps;
+    let names: Vec<String> = s.variants.iter().map(|v| v.label.clone()).collect();
+    // Slopes, and the time each method needs to reach the median of the equal-time errors.
+    let mut finals: Vec<f64> = rows.iter().filter(|r| r.time_budget == *s.ladder.last().unwrap()).map(|r| r.rel_mse).collect();
+    finals.sort_by(|a, b| a.total_cmp(b));
+    let target = finals.get(finals.len() / 2).copied().unwrap_or(0.0);
+    let summary: Vec<(String, Option<f64>, Option<f64>)> = names
+        .iter()
+        .map(|m| {
+            let pts: Vec<(f64, f64)> = rows.iter().filter(|r| &r.method == m).map(|r| (r.seconds, r.rel_mse)).collect();
+            (m.clone(), log_log_slope(&pts), time_to_reach(&pts, target))
+        })
+        .collect();
+    std::fs::write(s.out.join("metrics.csv"), csv(&rows))?;
+    std::fs::write(s.out.join("metrics.json"), json(&scene_path.display().to_string(), &ref_source, &rows, &summary, target))?;
+    std::fs::write(s.out.join("convergence.svg"), convergence_svg(&rows, &names))?;
+    std::fs::write(s.out.join("index.html"), html(scene_path, &ref_source, &rows, &summary, &names, s, target, scene))?;
+    Ok(rows)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn html(scene_path: &Path, ref_source: &str, rows: &[Row], summary: &[(String, Option<f64>, Option<f64>)], names: &[String], s: &CompareSettings, target: f64, scene: &Scene) -> String {
+    let t_eq = *s.ladder.last().unwrap();
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    // A crop of a quarter of the image around its centre, shown magnified for every image.
+    let (cw, ch) = ((w / 4).max(1), (h / 4).max(1));
+    let (cx, cy) = (w / 2 - cw / 2, h / 2 - ch / 2);
+    let zoom = 4;
+    let crop = |img: &str| {
+        format!(
+            "<div class=\"crop\" style=\"width:{}px;height:{}px\"><img src=\"{img}\" style=\"width:{}px;height:{}px;left:-{}px;top:-{}px\"></div>",
+            cw * zoom, ch * zoom, w * zoom, h * zoom, cx * zoom, cy * zoom
+        )
+    };
+    let mut out = String::new();
+    let _ = write!(
+        out,
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>footprint compare: {scene}</title>\n<style>\nbody {{ font-family: sans-serif; margin: 20px; }}\n.grid {{ display: flex; flex-wrap: wrap; gap: 16px; }}\n.cell {{ text-align: center; }}\n.crop {{ position: relative; overflow: hidden; border: 1px solid #888; }}\n.crop img {{ position: absolute; image-rendering: pixelated; }}\nimg.full {{ width: {w2}px; image-rendering: pixelated; }}\ntable {{ border-collapse: collapse; }} td, th {{ border: 1px solid #ccc; padding: 3px 8px; text-align: right; }}\n</style></head><body>\n<h1>{scene}</h1>\n<p>Every method for {t_eq} s of wall-clock time, passes that build the particle maps included; reference: {refsrc}. Relative MSE = mean of (X - R)² / (R² + 0.01) after dividing by the reference mean; spots = pixels whose luminance error exceeds {SPOT_FACTOR} x the reference (+1% of its mean). Crops: the centre quarter, {zoom}x.</p>\n",
+        scene = scene_path.display(),
+        w2 = w.max(256),
+        refsrc = ref_source
+    );
+    out += "<h2>Equal time</h2>\n<table><tr><th>method</th><th>spp</th><th>seconds</th><th>maps (s)</th><th>relative MSE</th><th>MAE</th><th>spots</th><th>slope</th><th>time to reach target (s)</th></tr>\n";
+    for (m, slope, tt) in summary {
+        if let Some(r) = rows.iter().find(|r| &r.method == m && r.time_budget == t_eq) {
+            let f = |v: Option<f64>| v.filter(|x| x.is_finite()).map(|x| format!("{x:.3}")).unwrap_or("-".into());
+            let _ = writeln!(
+                out,
+                "<tr><td style=\"text-align:left\">{m}</td><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{:.4e}</td><td>{:.4e}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                r.spp, r.seconds, r.map_seconds, r.rel_mse, r.mae, r.spots, f(*slope), f(*tt)
+            );
+        }
+    }
+    let _ = writeln!(out, "</table>\n<p>Target error for the last column: {target:.4e} (the median equal-time relative MSE).</p>");
+    out += "<h2>Error against time</h2>\n<img src=\"convergence.svg\" alt=\"convergence plot\">\n<h2>Images</h2>\n<div class=\"grid\">\n";
+    let _ = writeln!(out, "<div class=\"cell\"><img class=\"full\" src=\"reference.png\"><br>reference<br>{}</div>", crop("reference.png"));
+    for m in names {
+        let _ = writeln!(
+            out,
+            "<div class=\"cell\"><img class=\"full\" src=\"{m}.png\"><br>{m}<br>{}<br><img class=\"full\" src=\"{m}-error.png\"><br>error (blue 0, red ≥ 1 relative)</div>",
+            crop(&format!("{m}.png"))
+        );
+    }
+    out += "</div>\n<script>\nwindow.addEventListener('load', () => {\n  const imgs = [...document.images];\n  document.body.dataset.loaded = imgs.filter(i => i.complete && i.naturalWidth > 0).length + '/' + imgs.length;\n});\n</script>\n</body></html>\n";
+    out
+}
