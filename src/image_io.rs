@@ -155,7 +155,10 @@ pub fn read_exr_text_attribute(path: &Path, key: &str) -> Option<String> {
     use exr::meta::attribute::{AttributeValue, Text};
     let meta = exr::meta::MetaData::read_from_file(path, false).ok()?;
     let header = meta.headers.first()?;
-    match header.shared_attributes.other.get(&Text::from(key))? {
+    // Written as an image attribute; a single-part file may read it back as a layer attribute.
+    let key = Text::from(key);
+    let value = header.shared_attributes.other.get(&key).or_else(|| header.own_attributes.other.get(&key))?;
+    match value {
         AttributeValue::Text(t) => Some(t.to_string()),
         _ => None,
     }
