@@ -277,6 +277,7 @@ pub fn render_with(
     let mut camera_guide = GuideCounts::default();
     let mut light_guide = GuideCounts::default();
     let mut passes = 0u32;
+    let mut last_pass_end = start.elapsed().as_secs_f64();
     loop {
         if opts.integrator.traces_camera_paths() {
             let rows: Vec<(Vec<footprint::Rgb>, Vec<footprint::Rgb>, GuideCounts)> = (0..cam
@@ -363,8 +364,12 @@ pub fn render_with(
         }
         passes += 1;
         let elapsed = start.elapsed().as_secs_f64();
+        let pass_time = elapsed - last_pass_end;
+        last_pass_end = elapsed;
         let (fraction, done) = match opts.time {
-            Some(t) => ((elapsed / t).min(1.0), elapsed >= t),
+            // Whole passes only: stop when another one would end more than half a pass past
+            // the budget, so that the time spent is the budget to within half a pass.
+            Some(t) => ((elapsed / t).min(1.0), elapsed + 0.5 * pass_time >= t),
             None => (passes as f64 / opts.spp as f64, passes >= opts.spp),
         };
         on_progress(fraction);
