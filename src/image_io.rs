@@ -157,7 +157,11 @@ pub fn read_exr_text_attribute(path: &Path, key: &str) -> Option<String> {
     let header = meta.headers.first()?;
     // Written as an image attribute; a single-part file may read it back as a layer attribute.
     let key = Text::from(key);
-    let value = header.shared_attributes.other.get(&key).or_else(|| header.own_attributes.other.get(&key))?;
+    let value = header
+        .shared_attributes
+        .other
+        .get(&key)
+        .or_else(|| header.own_attributes.other.get(&key))?;
     match value {
         AttributeValue::Text(t) => Some(t.to_string()),
         _ => None,

@@ -7,7 +7,9 @@ mod common;
 use footprint::Rgb;
 use footprint::film::Image;
 use footprint::loader::load_scene;
-use footprint_integrators::compare::{SPOT_FACTOR, log_log_slope, mae, reference, rel_mse, spots, time_to_reach};
+use footprint_integrators::compare::{
+    SPOT_FACTOR, log_log_slope, mae, reference, rel_mse, spots, time_to_reach,
+};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -74,7 +76,9 @@ fn a_stale_reference_cache_is_rendered_again() {
     assert!(how.starts_with("rendered"), "{how}");
     // A changed material: stale again.
     let mtl = path.with_file_name("cornell.mtl");
-    let text = std::fs::read_to_string(&mtl).unwrap().replacen("Kd", "Kd 0.5 0.5 0.5\n#Kd", 1);
+    let text = std::fs::read_to_string(&mtl)
+        .unwrap()
+        .replacen("Kd", "Kd 0.5 0.5 0.5\n#Kd", 1);
     std::fs::write(&mtl, text).unwrap();
     let scene = {
         let mut s = load_scene(&path).unwrap();
@@ -92,13 +96,34 @@ fn run_compare(out: &Path) {
     let status = Command::new(env!("CARGO_BIN_EXE_footprint"))
         .args(["compare"])
         .arg(&path)
-        .args(["--time", "0.4", "--ladder", "0.2,0.4", "--resolution", "32x24", "--reference-spp", "16", "--photons", "5000", "--importons", "5000", "--out"])
+        .args([
+            "--time",
+            "0.4",
+            "--ladder",
+            "0.2,0.4",
+            "--resolution",
+            "32x24",
+            "--reference-spp",
+            "16",
+            "--photons",
+            "5000",
+            "--importons",
+            "5000",
+            "--out",
+        ])
         .arg(out)
         .output()
         .unwrap();
-    assert!(status.status.success(), "{}", String::from_utf8_lossy(&status.stderr));
+    assert!(
+        status.status.success(),
+        "{}",
+        String::from_utf8_lossy(&status.stderr)
+    );
     let err = String::from_utf8_lossy(&status.stderr);
-    assert!(err.contains("[1/14]") && err.contains("[14/14]"), "progress lines: {err}");
+    assert!(
+        err.contains("[1/14]") && err.contains("[14/14]"),
+        "progress lines: {err}"
+    );
 }
 
 #[test]
@@ -106,17 +131,37 @@ fn a_short_compare_writes_every_file_with_one_row_per_method() {
     let out = std::env::temp_dir().join(format!("footprint-compare-{}-out", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
     run_compare(&out);
-    let methods = ["pt-bsdf", "pt-grid", "pt-footprint", "lt-bsdf", "lt-grid", "lt-footprint", "combined-footprint"];
-    for f in ["index.html", "metrics.csv", "metrics.json", "convergence.svg", "reference.png"] {
+    let methods = [
+        "pt-bsdf",
+        "pt-grid",
+        "pt-footprint",
+        "lt-bsdf",
+        "lt-grid",
+        "lt-footprint",
+        "combined-footprint",
+    ];
+    for f in [
+        "index.html",
+        "metrics.csv",
+        "metrics.json",
+        "convergence.svg",
+        "reference.png",
+    ] {
         assert!(out.join(f).exists(), "{f} missing");
     }
     for m in methods {
-        assert!(out.join(format!("{m}.png")).exists() && out.join(format!("{m}-error.png")).exists(), "{m} images");
+        assert!(
+            out.join(format!("{m}.png")).exists() && out.join(format!("{m}-error.png")).exists(),
+            "{m} images"
+        );
     }
     let csv = std::fs::read_to_string(out.join("metrics.csv")).unwrap();
     for m in methods {
         for t in ["0.2", "0.4"] {
-            let n = csv.lines().filter(|l| l.starts_with(&format!("{m},{t},"))).count();
+            let n = csv
+                .lines()
+                .filter(|l| l.starts_with(&format!("{m},{t},")))
+                .count();
             assert_eq!(n, 1, "{m} at {t} s: {n} rows");
         }
     }
@@ -126,15 +171,38 @@ fn a_short_compare_writes_every_file_with_one_row_per_method() {
     assert_eq!(svg.matches("class=\"method\"").count(), 7);
 
     // ---- The page in headless Chromium: every image and the plot load ----
-    let chromium = ["chromium", "chromium-browser", "google-chrome"].iter().find(|c| Command::new(c).arg("--version").output().is_ok_and(|o| o.status.success()));
+    let chromium = ["chromium", "chromium-browser", "google-chrome"]
+        .iter()
+        .find(|c| {
+            Command::new(c)
+                .arg("--version")
+                .output()
+                .is_ok_and(|o| o.status.success())
+        });
     let Some(chromium) = chromium else {
-        assert!(std::env::var_os("CI").is_none(), "Chromium is missing on CI: .ci/run installs it");
-        eprintln!("\n*** SKIPPED: the headless Chromium check of index.html (no chromium on this machine; .ci/run installs it) ***\n");
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "Chromium is missing on CI: .ci/run installs it"
+        );
+        eprintln!(
+            "\n*** SKIPPED: the headless Chromium check of index.html (no chromium on this machine; .ci/run installs it) ***\n"
+        );
         return;
     };
     let profile = out.join("chromium-profile");
     let dom = Command::new(chromium)
-        .args(["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking", "--disable-component-update", "--disable-sync", "--allow-file-access-from-files", "--virtual-time-budget=5000"])
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--allow-file-access-from-files",
+            "--virtual-time-budget=5000",
+        ])
         .arg(format!("--user-data-dir={}", profile.display()))
         .arg("--dump-dom")
         .arg(format!("file://{}", out.join("index.html").display()))
@@ -144,5 +212,9 @@ fn a_short_compare_writes_every_file_with_one_row_per_method() {
     let images = 1 + 1 + 2 * methods.len(); // plot, reference, methods and their error images
     let crops = 1 + methods.len();
     let total = images + crops;
-    assert!(dom.contains(&format!("data-loaded=\"{total}/{total}\"")), "not every image loaded; DOM body: {}", dom.lines().find(|l| l.contains("<body")).unwrap_or(""));
+    assert!(
+        dom.contains(&format!("data-loaded=\"{total}/{total}\"")),
+        "not every image loaded; DOM body: {}",
+        dom.lines().find(|l| l.contains("<body")).unwrap_or("")
+    );
 }

@@ -39,7 +39,12 @@ pub fn rel_mse(x: &Image, r: &Image) -> f64 {
 
 /// Mean absolute error over pixels and channels.
 pub fn mae(x: &Image, r: &Image) -> f64 {
-    let sum: f64 = x.pixels.iter().zip(&r.pixels).map(|(a, b)| (*a - *b).abs().element_sum() as f64).sum();
+    let sum: f64 = x
+        .pixels
+        .iter()
+        .zip(&r.pixels)
+        .map(|(a, b)| (*a - *b).abs().element_sum() as f64)
+        .sum();
     sum / (3 * r.pixels.len()) as f64
 }
 
@@ -70,7 +75,10 @@ impl Method {
 
     pub fn parse(s: &str) -> Option<Self> {
         let (i, g) = s.split_once('-')?;
-        Some(Method { integrator: Integrator::parse(i)?, guide: Guide::parse(g)? })
+        Some(Method {
+            integrator: Integrator::parse(i)?,
+            guide: Guide::parse(g)?,
+        })
     }
 
     /// Path and light tracing with each guide, and the combined image with footprints.
@@ -81,7 +89,10 @@ impl Method {
                 v.push(Method { integrator, guide });
             }
         }
-        v.push(Method { integrator: Integrator::Combined, guide: Guide::Footprint });
+        v.push(Method {
+            integrator: Integrator::Combined,
+            guide: Guide::Footprint,
+        });
         v
     }
 }
@@ -130,7 +141,8 @@ pub fn reference_key(scene_path: &Path, scene: &Scene, spp: u32, max_depth: u32)
             h = h.wrapping_mul(0x100000001b3);
         }
     };
-    let text = std::fs::read(scene_path).with_context(|| format!("cannot read {}", scene_path.display()))?;
+    let text = std::fs::read(scene_path)
+        .with_context(|| format!("cannot read {}", scene_path.display()))?;
     eat(&text);
     // The meshes the scene names (and their materials), by content.
     let dir = scene_path.parent().unwrap_or(Path::new("."));
@@ -162,7 +174,14 @@ fn cached_key(path: &Path) -> Option<String> {
 
 /// The reference: `given`, or the cache next to the scene when its key matches, or a fresh
 /// render (written to the cache). Returns the image and where it came from.
-pub fn reference(scene_path: &Path, scene: &Scene, given: Option<&Path>, spp: u32, max_depth: u32, log: &mut dyn FnMut(&str)) -> Result<(Image, String)> {
+pub fn reference(
+    scene_path: &Path,
+    scene: &Scene,
+    given: Option<&Path>,
+    spp: u32,
+    max_depth: u32,
+    log: &mut dyn FnMut(&str),
+) -> Result<(Image, String)> {
     if let Some(p) = given {
         let img = read_exr(p)?;
         if img.width != scene.camera.width || img.height != scene.camera.height {
@@ -178,32 +197,68 @@ pub fn reference(scene_path: &Path, scene: &Scene, given: Option<&Path>, spp: u3
         return Ok((img, format!("given: {}", p.display())));
     }
     let key = reference_key(scene_path, scene, spp, max_depth)?;
-    let stem = scene_path.file_stem().map(|s| s.to_string_lossy().to_string()).unwrap_or("scene".into());
-    let cache = scene_path.with_file_name(format!(".{stem}-reference-{}x{}.exr", scene.camera.width, scene.camera.height));
+    let stem = scene_path
+        .file_stem()
+        .map(|s| s.to_string_lossy().to_string())
+        .unwrap_or("scene".into());
+    let cache = scene_path.with_file_name(format!(
+        ".{stem}-reference-{}x{}.exr",
+        scene.camera.width, scene.camera.height
+    ));
     if cache.exists() {
         if cached_key(&cache).as_deref() == Some(key.as_str()) {
             if let Ok(img) = read_exr(&cache) {
                 return Ok((img, format!("cached: {}", cache.display())));
             }
         }
-        log(&format!("reference cache {} is stale (scene or settings changed): rendering it again", cache.display()));
+        log(&format!(
+            "reference cache {} is stale (scene or settings changed): rendering it again",
+            cache.display()
+        ));
     }
-    log(&format!("rendering the reference: combined image, BSDF sampling, {spp} spp"));
-    let opts = RenderOptions { integrator: Integrator::Combined, guide: Guide::Bsdf, spp, max_depth, seed: 0x5eed, ..Default::default() };
+    log(&format!(
+        "rendering the reference: combined image, BSDF sampling, {spp} spp"
+    ));
+    let opts = RenderOptions {
+        integrator: Integrator::Combined,
+        guide: Guide::Bsdf,
+        spp,
+        max_depth,
+        seed: 0x5eed,
+        ..Default::default()
+    };
     let r = render(scene, &opts, |_| {});
-    write_exr(&cache, &[("combined", &r.image)], &[("footprint/reference_key".into(), key)])
-        .with_context(|| format!("cannot write the reference cache {}", cache.display()))?;
-    Ok((r.image, format!("rendered: {} ({:.1} s)", cache.display(), r.elapsed.as_secs_f64())))
+    write_exr(
+        &cache,
+        &[("combined", &r.image)],
+        &[("footprint/reference_key".into(), key)],
+    )
+    .with_context(|| format!("cannot write the reference cache {}", cache.display()))?;
+    Ok((
+        r.image,
+        format!(
+            "rendered: {} ({:.1} s)",
+            cache.display(),
+            r.elapsed.as_secs_f64()
+        ),
+    ))
 }
 
 /// Least-squares slope of log(error) against log(time).
 pub fn log_log_slope(points: &[(f64, f64)]) -> Option<f64> {
-    let pts: Vec<(f64, f64)> = points.iter().filter(|(t, e)| *t > 0.0 && *e > 0.0).map(|(t, e)| (t.ln(), e.ln())).collect();
+    let pts: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|(t, e)| *t > 0.0 && *e > 0.0)
+        .map(|(t, e)| (t.ln(), e.ln()))
+        .collect();
     if pts.len() < 2 {
         return None;
     }
     let n = pts.len() as f64;
-    let (mx, my) = (pts.iter().map(|p| p.0).sum::<f64>() / n, pts.iter().map(|p| p.1).sum::<f64>() / n);
+    let (mx, my) = (
+        pts.iter().map(|p| p.0).sum::<f64>() / n,
+        pts.iter().map(|p| p.1).sum::<f64>() / n,
+    );
     let sxx: f64 = pts.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
     let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
     (sxx > 0.0).then(|| sxy / sxx)
@@ -238,28 +293,70 @@ fn preview_exposure(r: &Image) -> f32 {
 }
 
 fn csv(rows: &[Row]) -> String {
-    let mut s = String::from("method,time_budget_s,seconds,map_seconds,tracing_seconds,spp,rel_mse,mae,spots\n");
+    let mut s = String::from(
+        "method,time_budget_s,seconds,map_seconds,tracing_seconds,spp,rel_mse,mae,spots\n",
+    );
     for r in rows {
-        let _ = writeln!(s, "{},{},{:.4},{:.4},{:.4},{},{:.6e},{:.6e},{}", r.method, r.time_budget, r.seconds, r.map_seconds, r.tracing_seconds, r.spp, r.rel_mse, r.mae, r.spots);
+        let _ = writeln!(
+            s,
+            "{},{},{:.4},{:.4},{:.4},{},{:.6e},{:.6e},{}",
+            r.method,
+            r.time_budget,
+            r.seconds,
+            r.map_seconds,
+            r.tracing_seconds,
+            r.spp,
+            r.rel_mse,
+            r.mae,
+            r.spots
+        );
     }
     s
 }
 
-fn json(scene: &str, reference: &str, rows: &[Row], summary: &[(String, Option<f64>, Option<f64>)], target: f64) -> String {
+fn json(
+    scene: &str,
+    reference: &str,
+    rows: &[Row],
+    summary: &[(String, Option<f64>, Option<f64>)],
+    target: f64,
+) -> String {
     let esc = |s: &str| s.replace('\\', "\\\\").replace('"', "\\\"");
-    let num = |v: Option<f64>| v.filter(|x| x.is_finite()).map(|x| format!("{x:.6e}")).unwrap_or("null".into());
-    let mut s = format!("{{\n  \"scene\": \"{}\",\n  \"reference\": \"{}\",\n  \"spot_factor\": {SPOT_FACTOR},\n  \"target_rel_mse\": {target:.6e},\n  \"rows\": [\n", esc(scene), esc(reference));
+    let num = |v: Option<f64>| {
+        v.filter(|x| x.is_finite())
+            .map(|x| format!("{x:.6e}"))
+            .unwrap_or("null".into())
+    };
+    let mut s = format!(
+        "{{\n  \"scene\": \"{}\",\n  \"reference\": \"{}\",\n  \"spot_factor\": {SPOT_FACTOR},\n  \"target_rel_mse\": {target:.6e},\n  \"rows\": [\n",
+        esc(scene),
+        esc(reference)
+    );
     for (i, r) in rows.iter().enumerate() {
         let _ = write!(
             s,
             "    {{\"method\": \"{}\", \"time_budget_s\": {}, \"seconds\": {:.4}, \"map_seconds\": {:.4}, \"tracing_seconds\": {:.4}, \"spp\": {}, \"rel_mse\": {:.6e}, \"mae\": {:.6e}, \"spots\": {}}}{}\n",
-            r.method, r.time_budget, r.seconds, r.map_seconds, r.tracing_seconds, r.spp, r.rel_mse, r.mae, r.spots,
+            r.method,
+            r.time_budget,
+            r.seconds,
+            r.map_seconds,
+            r.tracing_seconds,
+            r.spp,
+            r.rel_mse,
+            r.mae,
+            r.spots,
             if i + 1 < rows.len() { "," } else { "" }
         );
     }
     s += "  ],\n  \"methods\": [\n";
     for (i, (m, slope, t)) in summary.iter().enumerate() {
-        let _ = write!(s, "    {{\"method\": \"{m}\", \"slope\": {}, \"time_to_target_s\": {}}}{}\n", num(*slope), num(*t), if i + 1 < summary.len() { "," } else { "" });
+        let _ = write!(
+            s,
+            "    {{\"method\": \"{m}\", \"slope\": {}, \"time_to_target_s\": {}}}{}\n",
+            num(*slope),
+            num(*t),
+            if i + 1 < summary.len() { "," } else { "" }
+        );
     }
     s += "  ]\n}\n";
     s
@@ -268,43 +365,111 @@ fn json(scene: &str, reference: &str, rows: &[Row], summary: &[(String, Option<f
 /// A log-log plot of error against time, one polyline per method.
 pub fn convergence_svg(rows: &[Row], methods: &[String]) -> String {
     let (w, h, l, b, t, rgt) = (640.0, 420.0, 70.0, 50.0, 20.0, 170.0);
-    let pts: Vec<(f64, f64)> = rows.iter().filter(|r| r.rel_mse > 0.0).map(|r| (r.seconds.max(1e-3).log10(), r.rel_mse.log10())).collect();
+    let pts: Vec<(f64, f64)> = rows
+        .iter()
+        .filter(|r| r.rel_mse > 0.0)
+        .map(|r| (r.seconds.max(1e-3).log10(), r.rel_mse.log10()))
+        .collect();
     if pts.is_empty() {
-        return format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\"></svg>\n");
+        return format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\"></svg>\n"
+        );
     }
-    let (x0, x1) = (pts.iter().map(|p| p.0).fold(f64::MAX, f64::min).floor(), pts.iter().map(|p| p.0).fold(f64::MIN, f64::max).ceil().max(0.0));
-    let (y0, y1) = (pts.iter().map(|p| p.1).fold(f64::MAX, f64::min).floor(), pts.iter().map(|p| p.1).fold(f64::MIN, f64::max).ceil());
-    let (x1, y1) = (if x1 <= x0 { x0 + 1.0 } else { x1 }, if y1 <= y0 { y0 + 1.0 } else { y1 });
+    let (x0, x1) = (
+        pts.iter().map(|p| p.0).fold(f64::MAX, f64::min).floor(),
+        pts.iter()
+            .map(|p| p.0)
+            .fold(f64::MIN, f64::max)
+            .ceil()
+            .max(0.0),
+    );
+    let (y0, y1) = (
+        pts.iter().map(|p| p.1).fold(f64::MAX, f64::min).floor(),
+        pts.iter().map(|p| p.1).fold(f64::MIN, f64::max).ceil(),
+    );
+    let (x1, y1) = (
+        if x1 <= x0 { x0 + 1.0 } else { x1 },
+        if y1 <= y0 { y0 + 1.0 } else { y1 },
+    );
     let px = |x: f64| l + (x - x0) / (x1 - x0) * (w - l - rgt);
     let py = |y: f64| t + (y1 - y) / (y1 - y0) * (h - t - b);
-    let colours = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"];
-    let mut s = format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
+    let colours = [
+        "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
+        "#bcbd22", "#17becf",
+    ];
+    let mut s = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+    );
     // Axes and decade grid.
     let mut d = x0;
     while d <= x1 + 1e-9 {
-        let _ = writeln!(s, "<line x1=\"{0:.1}\" y1=\"{1:.1}\" x2=\"{0:.1}\" y2=\"{2:.1}\" stroke=\"#ddd\"/><text x=\"{0:.1}\" y=\"{3:.1}\" text-anchor=\"middle\">{4}</text>", px(d), py(y1), py(y0), h - b + 16.0, fmt_decade(d));
+        let _ = writeln!(
+            s,
+            "<line x1=\"{0:.1}\" y1=\"{1:.1}\" x2=\"{0:.1}\" y2=\"{2:.1}\" stroke=\"#ddd\"/><text x=\"{0:.1}\" y=\"{3:.1}\" text-anchor=\"middle\">{4}</text>",
+            px(d),
+            py(y1),
+            py(y0),
+            h - b + 16.0,
+            fmt_decade(d)
+        );
         d += 1.0;
     }
     let mut d = y0;
     while d <= y1 + 1e-9 {
-        let _ = writeln!(s, "<line x1=\"{0:.1}\" y1=\"{1:.1}\" x2=\"{2:.1}\" y2=\"{1:.1}\" stroke=\"#ddd\"/><text x=\"{3:.1}\" y=\"{4:.1}\" text-anchor=\"end\">{5}</text>", px(x0), py(d), px(x1), l - 6.0, py(d) + 4.0, fmt_decade(d));
+        let _ = writeln!(
+            s,
+            "<line x1=\"{0:.1}\" y1=\"{1:.1}\" x2=\"{2:.1}\" y2=\"{1:.1}\" stroke=\"#ddd\"/><text x=\"{3:.1}\" y=\"{4:.1}\" text-anchor=\"end\">{5}</text>",
+            px(x0),
+            py(d),
+            px(x1),
+            l - 6.0,
+            py(d) + 4.0,
+            fmt_decade(d)
+        );
         d += 1.0;
     }
-    let _ = writeln!(s, "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">wall-clock time (s, maps included)</text>", (l + w - rgt) / 2.0, h - 8.0);
-    let _ = writeln!(s, "<text x=\"16\" y=\"{:.1}\" transform=\"rotate(-90 16 {:.1})\" text-anchor=\"middle\">relative MSE</text>", (t + h - b) / 2.0, (t + h - b) / 2.0);
+    let _ = writeln!(
+        s,
+        "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">wall-clock time (s, maps included)</text>",
+        (l + w - rgt) / 2.0,
+        h - 8.0
+    );
+    let _ = writeln!(
+        s,
+        "<text x=\"16\" y=\"{:.1}\" transform=\"rotate(-90 16 {:.1})\" text-anchor=\"middle\">relative MSE</text>",
+        (t + h - b) / 2.0,
+        (t + h - b) / 2.0
+    );
     for (i, m) in methods.iter().enumerate() {
         let c = colours[i % colours.len()];
         let line: Vec<String> = rows
             .iter()
             .filter(|r| &r.method == m && r.rel_mse > 0.0)
-            .map(|r| format!("{:.1},{:.1}", px(r.seconds.max(1e-3).log10()), py(r.rel_mse.log10())))
+            .map(|r| {
+                format!(
+                    "{:.1},{:.1}",
+                    px(r.seconds.max(1e-3).log10()),
+                    py(r.rel_mse.log10())
+                )
+            })
             .collect();
-        let _ = writeln!(s, "<polyline class=\"method\" fill=\"none\" stroke=\"{c}\" stroke-width=\"2\" points=\"{}\"/>", line.join(" "));
+        let _ = writeln!(
+            s,
+            "<polyline class=\"method\" fill=\"none\" stroke=\"{c}\" stroke-width=\"2\" points=\"{}\"/>",
+            line.join(" ")
+        );
         for p in &line {
             let (x, y) = p.split_once(',').unwrap();
             let _ = writeln!(s, "<circle cx=\"{x}\" cy=\"{y}\" r=\"3\" fill=\"{c}\"/>");
         }
-        let _ = writeln!(s, "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"14\" height=\"4\" fill=\"{c}\"/><text x=\"{:.1}\" y=\"{:.1}\">{m}</text>", w - rgt + 15.0, t + 10.0 + 18.0 * i as f64, w - rgt + 34.0, t + 15.0 + 18.0 * i as f64);
+        let _ = writeln!(
+            s,
+            "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"14\" height=\"4\" fill=\"{c}\"/><text x=\"{:.1}\" y=\"{:.1}\">{m}</text>",
+            w - rgt + 15.0,
+            t + 10.0 + 18.0 * i as f64,
+            w - rgt + 34.0,
+            t + 15.0 + 18.0 * i as f64
+        );
     }
     s += "</svg>\n";
     s
@@ -315,9 +480,24 @@ fn fmt_decade(d: f64) -> String {
 }
 
 /// Runs the comparison and writes every file; returns the rows.
-pub fn run(scene_path: &Path, scene: &mut Scene, given_ref: Option<&Path>, s: &CompareSettings, max_depth: u32, log: &mut dyn FnMut(&str)) -> Result<Vec<Row>> {
-    std::fs::create_dir_all(&s.out).with_context(|| format!("cannot create {}", s.out.display()))?;
-    let (reference, ref_source) = reference(scene_path, scene, given_ref, s.reference_spp, max_depth, log)?;
+pub fn run(
+    scene_path: &Path,
+    scene: &mut Scene,
+    given_ref: Option<&Path>,
+    s: &CompareSettings,
+    max_depth: u32,
+    log: &mut dyn FnMut(&str),
+) -> Result<Vec<Row>> {
+    std::fs::create_dir_all(&s.out)
+        .with_context(|| format!("cannot create {}", s.out.display()))?;
+    let (reference, ref_source) = reference(
+        scene_path,
+        scene,
+        given_ref,
+        s.reference_spp,
+        max_depth,
+        log,
+    )?;
     let exposure = preview_exposure(&reference);
     write_png(&s.out.join("reference.png"), &reference, exposure)?;
     let total_runs = s.variants.len() * s.ladder.len();
@@ -329,8 +509,17 @@ pub fn run(scene_path: &Path, scene: &mut Scene, given_ref: Option<&Path>, s: &C
         scene.maps = v.maps.clone();
         for (li, &t) in s.ladder.iter().enumerate() {
             let run_index = mi * s.ladder.len() + li + 1;
-            log(&format!("[{run_index}/{total_runs}] {} for {t} s (about {:.0} s left)", v.label, budget - spent));
-            let opts = RenderOptions { time: Some(t), seed: s.seed, max_depth, ..v.opts.clone() };
+            log(&format!(
+                "[{run_index}/{total_runs}] {} for {t} s (about {:.0} s left)",
+                v.label,
+                budget - spent
+            ));
+            let opts = RenderOptions {
+                time: Some(t),
+                seed: s.seed,
+                max_depth,
+                ..v.opts.clone()
+            };
             let r = render(scene, &opts, |_| {});
             spent += t;
             let tm = &r.timings;
@@ -347,32 +536,77 @@ pub fn run(scene_path: &Path, scene: &mut Scene, given_ref: Option<&Path>, s: &C
             });
             if li + 1 == s.ladder.len() {
                 write_png(&s.out.join(format!("{}.png", v.label)), &r.image, exposure)?;
-                write_png(&s.out.join(format!("{}-error.png", v.label)), &error_image(&r.image, &reference), 0.0)?;
+                write_png(
+                    &s.out.join(format!("{}-error.png", v.label)),
+                    &error_image(&r.image, &reference),
+                    0.0,
+                )?;
             }
         }
     }
     scene.maps = scene_maps;
     let names: Vec<String> = s.variants.iter().map(|v| v.label.clone()).collect();
     // Slopes, and the time each method needs to reach the median of the equal-time errors.
-    let mut finals: Vec<f64> = rows.iter().filter(|r| r.time_budget == *s.ladder.last().unwrap()).map(|r| r.rel_mse).collect();
+    let mut finals: Vec<f64> = rows
+        .iter()
+        .filter(|r| r.time_budget == *s.ladder.last().unwrap())
+        .map(|r| r.rel_mse)
+        .collect();
     finals.sort_by(|a, b| a.total_cmp(b));
     let target = finals.get(finals.len() / 2).copied().unwrap_or(0.0);
     let summary: Vec<(String, Option<f64>, Option<f64>)> = names
         .iter()
         .map(|m| {
-            let pts: Vec<(f64, f64)> = rows.iter().filter(|r| &r.method == m).map(|r| (r.seconds, r.rel_mse)).collect();
+            let pts: Vec<(f64, f64)> = rows
+                .iter()
+                .filter(|r| &r.method == m)
+                .map(|r| (r.seconds, r.rel_mse))
+                .collect();
             (m.clone(), log_log_slope(&pts), time_to_reach(&pts, target))
         })
         .collect();
     std::fs::write(s.out.join("metrics.csv"), csv(&rows))?;
-    std::fs::write(s.out.join("metrics.json"), json(&scene_path.display().to_string(), &ref_source, &rows, &summary, target))?;
-    std::fs::write(s.out.join("convergence.svg"), convergence_svg(&rows, &names))?;
-    std::fs::write(s.out.join("index.html"), html(scene_path, &ref_source, &rows, &summary, &names, s, target, scene))?;
+    std::fs::write(
+        s.out.join("metrics.json"),
+        json(
+            &scene_path.display().to_string(),
+            &ref_source,
+            &rows,
+            &summary,
+            target,
+        ),
+    )?;
+    std::fs::write(
+        s.out.join("convergence.svg"),
+        convergence_svg(&rows, &names),
+    )?;
+    std::fs::write(
+        s.out.join("index.html"),
+        html(
+            scene_path,
+            &ref_source,
+            &rows,
+            &summary,
+            &names,
+            s,
+            target,
+            scene,
+        ),
+    )?;
     Ok(rows)
 }
 
 #[allow(clippy::too_many_arguments)]
-fn html(scene_path: &Path, ref_source: &str, rows: &[Row], summary: &[(String, Option<f64>, Option<f64>)], names: &[String], s: &CompareSettings, target: f64, scene: &Scene) -> String {
+fn html(
+    scene_path: &Path,
+    ref_source: &str,
+    rows: &[Row],
+    summary: &[(String, Option<f64>, Option<f64>)],
+    names: &[String],
+    s: &CompareSettings,
+    target: f64,
+    scene: &Scene,
+) -> String {
     let t_eq = *s.ladder.last().unwrap();
     let (w, h) = (scene.camera.width, scene.camera.height);
     // A crop of a quarter of the image around its centre, shown magnified for every image.
@@ -382,7 +616,12 @@ fn html(scene_path: &Path, ref_source: &str, rows: &[Row], summary: &[(String, O
     let crop = |img: &str| {
         format!(
             "<div class=\"crop\" style=\"width:{}px;height:{}px\"><img src=\"{img}\" style=\"width:{}px;height:{}px;left:-{}px;top:-{}px\"></div>",
-            cw * zoom, ch * zoom, w * zoom, h * zoom, cx * zoom, cy * zoom
+            cw * zoom,
+            ch * zoom,
+            w * zoom,
+            h * zoom,
+            cx * zoom,
+            cy * zoom
         )
     };
     let mut out = String::new();
@@ -395,18 +634,39 @@ fn html(scene_path: &Path, ref_source: &str, rows: &[Row], summary: &[(String, O
     );
     out += "<h2>Equal time</h2>\n<table><tr><th>method</th><th>spp</th><th>seconds</th><th>maps (s)</th><th>relative MSE</th><th>MAE</th><th>spots</th><th>slope</th><th>time to reach target (s)</th></tr>\n";
     for (m, slope, tt) in summary {
-        if let Some(r) = rows.iter().find(|r| &r.method == m && r.time_budget == t_eq) {
-            let f = |v: Option<f64>| v.filter(|x| x.is_finite()).map(|x| format!("{x:.3}")).unwrap_or("-".into());
+        if let Some(r) = rows
+            .iter()
+            .find(|r| &r.method == m && r.time_budget == t_eq)
+        {
+            let f = |v: Option<f64>| {
+                v.filter(|x| x.is_finite())
+                    .map(|x| format!("{x:.3}"))
+                    .unwrap_or("-".into())
+            };
             let _ = writeln!(
                 out,
                 "<tr><td style=\"text-align:left\">{m}</td><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{:.4e}</td><td>{:.4e}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-                r.spp, r.seconds, r.map_seconds, r.rel_mse, r.mae, r.spots, f(*slope), f(*tt)
+                r.spp,
+                r.seconds,
+                r.map_seconds,
+                r.rel_mse,
+                r.mae,
+                r.spots,
+                f(*slope),
+                f(*tt)
             );
         }
     }
-    let _ = writeln!(out, "</table>\n<p>Target error for the last column: {target:.4e} (the median equal-time relative MSE).</p>");
+    let _ = writeln!(
+        out,
+        "</table>\n<p>Target error for the last column: {target:.4e} (the median equal-time relative MSE).</p>"
+    );
     out += "<h2>Error against time</h2>\n<img src=\"convergence.svg\" alt=\"convergence plot\">\n<h2>Images</h2>\n<div class=\"grid\">\n";
-    let _ = writeln!(out, "<div class=\"cell\"><img class=\"full\" src=\"reference.png\"><br>reference<br>{}</div>", crop("reference.png"));
+    let _ = writeln!(
+        out,
+        "<div class=\"cell\"><img class=\"full\" src=\"reference.png\"><br>reference<br>{}</div>",
+        crop("reference.png")
+    );
     for m in names {
         let _ = writeln!(
             out,

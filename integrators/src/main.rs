@@ -431,41 +431,95 @@ fn run(cli: Cli) -> Result<()> {
             maps.apply(&mut sc)?;
             maps_command(&sc, &out, max_depth, seed)
         }
-        Command::Compare { scene, time, ladder, reference, reference_spp, methods, sweep, out, resolution, max_depth, seed, threads, guide, maps } => {
+        Command::Compare {
+            scene,
+            time,
+            ladder,
+            reference,
+            reference_spp,
+            methods,
+            sweep,
+            out,
+            resolution,
+            max_depth,
+            seed,
+            threads,
+            guide,
+            maps,
+        } => {
             set_threads(threads)?;
             let mut sc = load_scene(&scene)?;
             maps.apply(&mut sc)?;
             if let Some((w, h)) = resolution {
-                sc.camera = sc.camera.with_resolution(w, h).map_err(|e| anyhow::anyhow!("--resolution: {e}"))?;
+                sc.camera = sc
+                    .camera
+                    .with_resolution(w, h)
+                    .map_err(|e| anyhow::anyhow!("--resolution: {e}"))?;
             }
             if !(time.is_finite() && time > 0.0) {
                 bail!("--time must be a positive number of seconds, got {time}");
             }
             let ladder = ladder.unwrap_or_else(|| vec![time / 8.0, time / 4.0, time / 2.0, time]);
-            if ladder.is_empty() || ladder.iter().any(|t| !(t.is_finite() && *t > 0.0)) || ladder.windows(2).any(|w| w[0] >= w[1]) {
+            if ladder.is_empty()
+                || ladder.iter().any(|t| !(t.is_finite() && *t > 0.0))
+                || ladder.windows(2).any(|w| w[0] >= w[1])
+            {
                 bail!("--ladder must be positive, increasing times, got {ladder:?}");
             }
             let mut base = RenderOptions::from_scene(&sc);
             guide.apply(&mut base)?;
             let max_depth = max_depth.unwrap_or(base.max_depth);
-            let default_methods = if sweep.is_some() { vec!["pt-footprint".to_string(), "lt-footprint".to_string()] } else { footprint_integrators::compare::Method::all().iter().map(|m| m.name()).collect() };
+            let default_methods = if sweep.is_some() {
+                vec!["pt-footprint".to_string(), "lt-footprint".to_string()]
+            } else {
+                footprint_integrators::compare::Method::all()
+                    .iter()
+                    .map(|m| m.name())
+                    .collect()
+            };
             let methods = methods.unwrap_or(default_methods);
             let mut parsed = Vec::new();
             for m in &methods {
                 parsed.push(footprint_integrators::compare::Method::parse(m).ok_or_else(|| anyhow::anyhow!("--methods: unknown method '{m}' (expected INTEGRATOR-GUIDE, e.g. pt-footprint)"))?);
             }
             let variants = compare_variants(&parsed, &base, &sc, sweep.as_deref())?;
-            let stem = scene.file_stem().map(|s| s.to_string_lossy().to_string()).unwrap_or("scene".into());
+            let stem = scene
+                .file_stem()
+                .map(|s| s.to_string_lossy().to_string())
+                .unwrap_or("scene".into());
             let out = out.unwrap_or_else(|| PathBuf::from(format!("compare-{stem}")));
-            let settings = footprint_integrators::compare::CompareSettings { variants, ladder, reference_spp, out: out.clone(), seed };
+            let settings = footprint_integrators::compare::CompareSettings {
+                variants,
+                ladder,
+                reference_spp,
+                out: out.clone(),
+                seed,
+            };
             let start = Instant::now();
-            let rows = footprint_integrators::compare::run(&scene, &mut sc, reference.as_deref(), &settings, max_depth, &mut |m| eprintln!("{m}"))?;
+            let rows = footprint_integrators::compare::run(
+                &scene,
+                &mut sc,
+                reference.as_deref(),
+                &settings,
+                max_depth,
+                &mut |m| eprintln!("{m}"),
+            )?;
             let last = *settings.ladder.last().unwrap();
-            println!("{:<28} {:>6} {:>9} {:>12} {:>12} {:>7}", "method", "spp", "seconds", "rel. MSE", "MAE", "spots");
+            println!(
+                "{:<28} {:>6} {:>9} {:>12} {:>12} {:>7}",
+                "method", "spp", "seconds", "rel. MSE", "MAE", "spots"
+            );
             for r in rows.iter().filter(|r| r.time_budget == last) {
-                println!("{:<28} {:>6} {:>9.2} {:>12.4e} {:>12.4e} {:>7}", r.method, r.spp, r.seconds, r.rel_mse, r.mae, r.spots);
+                println!(
+                    "{:<28} {:>6} {:>9.2} {:>12.4e} {:>12.4e} {:>7}",
+                    r.method, r.spp, r.seconds, r.rel_mse, r.mae, r.spots
+                );
             }
-            println!("wrote {} (index.html, metrics.csv, metrics.json, convergence.svg) in {:.0} s", out.display(), start.elapsed().as_secs_f64());
+            println!(
+                "wrote {} (index.html, metrics.csv, metrics.json, convergence.svg) in {:.0} s",
+                out.display(),
+                start.elapsed().as_secs_f64()
+            );
             Ok(())
         }
         Command::Bench {
@@ -490,19 +544,41 @@ fn compare_variants(
     sweep: Option<&str>,
 ) -> Result<Vec<footprint_integrators::compare::Variant>> {
     use footprint_integrators::compare::Variant;
-    let make = |m: &footprint_integrators::compare::Method, label: String, opts: RenderOptions, maps: footprint::scene::MapSettings| -> Result<Variant> {
-        opts.guide_params.validate().map_err(|e| anyhow::anyhow!("--sweep: {e}"))?;
-        maps.validate().map_err(|e| anyhow::anyhow!("--sweep: {e}"))?;
-        Ok(Variant { label, opts: RenderOptions { integrator: m.integrator, guide: m.guide, ..opts }, maps })
+    let make = |m: &footprint_integrators::compare::Method,
+                label: String,
+                opts: RenderOptions,
+                maps: footprint::scene::MapSettings|
+     -> Result<Variant> {
+        opts.guide_params
+            .validate()
+            .map_err(|e| anyhow::anyhow!("--sweep: {e}"))?;
+        maps.validate()
+            .map_err(|e| anyhow::anyhow!("--sweep: {e}"))?;
+        Ok(Variant {
+            label,
+            opts: RenderOptions {
+                integrator: m.integrator,
+                guide: m.guide,
+                ..opts
+            },
+            maps,
+        })
     };
     let Some(sweep) = sweep else {
-        return methods.iter().map(|m| make(m, m.name(), base.clone(), scene.maps.clone())).collect();
+        return methods
+            .iter()
+            .map(|m| make(m, m.name(), base.clone(), scene.maps.clone()))
+            .collect();
     };
-    let (name, values) = sweep.split_once('=').ok_or_else(|| anyhow::anyhow!("--sweep: expected NAME=V1,V2,..., got '{sweep}'"))?;
+    let (name, values) = sweep
+        .split_once('=')
+        .ok_or_else(|| anyhow::anyhow!("--sweep: expected NAME=V1,V2,..., got '{sweep}'"))?;
     let mut out = Vec::new();
     for v in values.split(',') {
         let v = v.trim();
-        let num: f64 = v.parse().map_err(|_| anyhow::anyhow!("--sweep: '{v}' is not a number"))?;
+        let num: f64 = v
+            .parse()
+            .map_err(|_| anyhow::anyhow!("--sweep: '{v}' is not a number"))?;
         for m in methods {
             let mut opts = base.clone();
             let mut maps = scene.maps.clone();
@@ -514,9 +590,16 @@ fn compare_variants(
                 "grid" => opts.guide_params.grid_side = num as usize,
                 "photons" => maps.photons = num as usize,
                 "importons" => maps.importons = num as usize,
-                other => bail!("--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, k_g, grid, photons or importons)"),
+                other => bail!(
+                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, k_g, grid, photons or importons)"
+                ),
             }
-            out.push(make(m, format!("{}@{}={v}", m.name(), name.trim()), opts, maps)?);
+            out.push(make(
+                m,
+                format!("{}@{}={v}", m.name(), name.trim()),
+                opts,
+                maps,
+            )?);
         }
     }
     Ok(out)
