@@ -311,6 +311,19 @@ impl MapArgs {
     }
 }
 
+/// Loads a scene and applies the map flags and a resolution override.
+fn load_scene_with(path: &Path, maps: &MapArgs, resolution: Option<(u32, u32)>) -> Result<Scene> {
+    let mut sc = load_scene(path)?;
+    maps.apply(&mut sc)?;
+    if let Some((w, h)) = resolution {
+        sc.camera = sc
+            .camera
+            .with_resolution(w, h)
+            .map_err(|e| anyhow::anyhow!("--resolution: {e}"))?;
+    }
+    Ok(sc)
+}
+
 fn parse_resolution(s: &str) -> std::result::Result<(u32, u32), String> {
     let (w, h) = s
         .split_once('x')
@@ -378,14 +391,7 @@ fn run(cli: Cli) -> Result<()> {
                 bail!("--exposure must be finite");
             }
             let t0 = Instant::now();
-            let mut sc = load_scene(&scene)?;
-            maps.apply(&mut sc)?;
-            if let Some((w, h)) = resolution {
-                sc.camera = sc
-                    .camera
-                    .with_resolution(w, h)
-                    .map_err(|e| anyhow::anyhow!("--resolution: {e}"))?;
-            }
+            let sc = load_scene_with(&scene, &maps, resolution)?;
             let load_time = t0.elapsed();
             let mut opts = RenderOptions::from_scene(&sc);
             if let Some(i) = integrator {
@@ -448,14 +454,7 @@ fn run(cli: Cli) -> Result<()> {
             maps,
         } => {
             set_threads(threads)?;
-            let mut sc = load_scene(&scene)?;
-            maps.apply(&mut sc)?;
-            if let Some((w, h)) = resolution {
-                sc.camera = sc
-                    .camera
-                    .with_resolution(w, h)
-                    .map_err(|e| anyhow::anyhow!("--resolution: {e}"))?;
-            }
+            let mut sc = load_scene_with(&scene, &maps, resolution)?;
             if !(time.is_finite() && time > 0.0) {
                 bail!("--time must be a positive number of seconds, got {time}");
             }
