@@ -251,6 +251,12 @@ pub fn gather_particles(
         return false;
     }
     let n = at.side_normal();
+    // Where the map cannot hold k particles facing this way (the dark side of a wall), skip
+    // the search: the query would report fewer than k.
+    if !map.may_hold(at.p, n, params.k_p, max_dist) {
+        state.fallbacks += 1;
+        return false;
+    }
     let mut neighbors = std::mem::take(&mut state.neighbors);
     let found = map.query(
         at.p,

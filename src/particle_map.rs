@@ -100,43 +100,87 @@ pub struct ParticleMap {
     pub build_time: Duration,
 }
 
-/// A coarse grid of particle counts over the map's bounds (at most one cell per 32
-/// particles, 16-bit saturating counts: under 0.07 bytes per particle). It gives each query
-/// a first radius that holds about `2k` particles, so that one unsorted radius search usually
-/// suffices.
+/// A coarse grid of particle counts over the map's bounds, split by the particles' normal into
+/// six buckets (the dominant axis and its sign): at most one cell per 64 particles, six 16-bit
+/// saturating counts each (under 0.2 bytes per particle). It gives each query a first radius
+/// expected to hold about `2k` admissible particles, and an upper bound on the admissible
+/// particles within the maximum distance, so that a query that cannot find `k` (the dark
+/// side of a wall) returns at once instead of searching.
 #[derive(Clone, Debug, Default)]
 struct DensityGrid {
     lo: Vec3,
     cell: f32,
     dims: [usize; 3],
-    counts: Vec<u16>,
+    counts: Vec<[u16; 6]>,
 }
 
+/// The axis of each normal bucket.
+const BUCKET_AXES: [Vec3; 6] = [
+    Vec3::X,
+    Vec3::NEG_X,
+    Vec3::Y,
+    Vec3::NEG_Y,
+    Vec3::Z,
+    Vec3::NEG_Z,
+];
+
 impl DensityGrid {
-    fn build(points: &[[f32; 3]], lo: Vec3, hi: Vec3) -> Self {
+    fn build(particles: &[(Vec3, Vec3)], lo: Vec3, hi: Vec3) -> Self {
         let extent = (hi - lo).max(Vec3::splat(1e-6));
-        let target = (points.len() / 32).clamp(1, 1 << 18) as f32;
-        // Cubic cells: cell³ · cells = volume.
-        let cell = (extent.x * extent.y * extent.z / target)
+        let target = (particles.len() / 64).clamp(1, 1 << 18) as f32;
+        // Cubic cells, about `target` of them: cell³ · cells = volume, grown until flat or
+        // thin particle sets (a single wall) do not get more cells than that either.
+        let dims_for = |cell: f32| {
+            [
+                ((extent.x / cell).ceil() as usize).max(1),
+                ((extent.y / cell).ceil() as usize).max(1),
+                ((extent.z / cell).ceil() as usize).max(1),
+            ]
+        };
+        let mut cell = (extent.x * extent.y * extent.z / target)
             .cbrt()
-            .max(extent.max_element() / 256.0);
-        let dims = [
-            ((extent.x / cell).ceil() as usize).max(1),
-            ((extent.y / cell).ceil() as usize).max(1),
-            ((extent.z / cell).ceil() as usize).max(1),
-        ];
+            .max(extent.max_element() / 1024.0);
+        while dims_for(cell).iter().product::<usize>() as f32 > 2.0 * target {
+            cell *= 1.25;
+        }
+        let dims = dims_for(cell);
         let mut g = DensityGrid {
             lo,
             cell,
             dims,
-            counts: vec![0; dims[0] * dims[1] * dims[2]],
+            counts: vec![[0; 6]; dims[0] * dims[1] * dims[2]],
         };
-        for p in points {
-            let c = g.cell_of(Vec3::from(*p));
-            let i = g.index(c);
-            g.counts[i] = g.counts[i].saturating_add(1);
+        for (p, n) in particles {
+            let i = g.index(g.cell_of(*p));
+            let b = Self::bucket(*n);
+            g.counts[i][b] = g.counts[i][b].saturating_add(1);
         }
         g
+    }
+
+    /// The bucket of a normal: its dominant axis and sign.
+    fn bucket(n: Vec3) -> usize {
+        let a = n.abs();
+        if a.x >= a.y && a.x >= a.z {
+            if n.x >= 0.0 { 0 } else { 1 }
+        } else if a.y >= a.z {
+            if n.y >= 0.0 { 2 } else { 3 }
+        } else if n.z >= 0.0 {
+            4
+        } else {
+            5
+        }
+    }
+
+    /// Buckets that can hold a particle whose normal is within the query cone of `n`
+    /// (`n_p · n >= NORMAL_COS_MIN`): a bucket spans up to 54.8° around its axis and the cone
+    /// 45.6° around `n`, so the bucket counts when its axis is within 100.4° of `n`.
+    fn buckets_for(n: Vec3) -> [bool; 6] {
+        let mut b = [false; 6];
+        for (i, a) in BUCKET_AXES.iter().enumerate() {
+            b[i] = a.dot(n) > -0.18;
+        }
+        b
     }
 
     fn cell_of(&self, x: Vec3) -> [isize; 3] {
@@ -154,29 +198,69 @@ impl DensityGrid {
             + cl(c[0], self.dims[0])
     }
 
-    /// A radius around `x` expected to hold about `m` particles, assuming they lie on
-    /// surfaces: the 3 x 3 x 3 block around `x` holds `S` particles on about `9 cell²` of
-    /// surface, so `r = cell · sqrt(9 m / (π S))`.
-    fn radius_for(&self, x: Vec3, m: usize) -> Option<f32> {
-        if self.counts.is_empty() {
-            return None;
-        }
-        let c = self.cell_of(x);
-        let mut sum = 0u32;
-        for dz in -1..=1 {
-            for dy in -1..=1 {
-                for dx in -1..=1 {
-                    let cc = [c[0] + dx, c[1] + dy, c[2] + dz];
-                    if (0..3).all(|a| cc[a] >= 0 && (cc[a] as usize) < self.dims[a]) {
-                        sum += self.counts[self.index(cc)] as u32;
+    /// Admissible-bucket particles in the cells from `c - reach` to `c + reach` (clipped to
+    /// the grid); `None` when a count saturated (the sum would not be a bound).
+    fn sum_around(&self, c: [isize; 3], reach: [isize; 3], buckets: &[bool; 6]) -> Option<u64> {
+        let range =
+            |a: usize| (c[a] - reach[a]).max(0)..=(c[a] + reach[a]).min(self.dims[a] as isize - 1);
+        let mut sum = 0u64;
+        for z in range(2) {
+            for y in range(1) {
+                for x in range(0) {
+                    let counts = &self.counts[self.index([x, y, z])];
+                    for (b, &on) in buckets.iter().enumerate() {
+                        if on {
+                            if counts[b] == u16::MAX {
+                                return None;
+                            }
+                            sum += counts[b] as u64;
+                        }
                     }
                 }
             }
         }
-        if sum == 0 {
+        Some(sum)
+    }
+
+    /// A radius around `x` expected to hold about `m` admissible particles, assuming they
+    /// lie on surfaces: the 3 x 3 x 3 block around `x` holds `S` of them on about `9 cell²`
+    /// of surface, so `r = cell · sqrt(9 m / (π S))`.
+    fn radius_for(&self, x: Vec3, n: Vec3, m: usize) -> Option<f32> {
+        if self.counts.is_empty() {
+            return None;
+        }
+        let sum = self
+            .sum_around(self.cell_of(x), [1, 1, 1], &Self::buckets_for(n))
+            .unwrap_or(u64::MAX);
+        if sum == 0 || sum == u64::MAX {
             return None;
         }
         Some(self.cell * (9.0 * m as f32 / (PI_F32 * sum as f32)).sqrt())
+    }
+
+    /// An upper bound on the admissible particles within `max_dist` of `x` (every cell the
+    /// ball touches, the buckets that can face `n`); `None` when not cheaply known.
+    fn bound_within(&self, x: Vec3, n: Vec3, max_dist: f32) -> Option<u64> {
+        if self.counts.is_empty() {
+            return Some(0);
+        }
+        let lo = self.cell_of(x - Vec3::splat(max_dist));
+        let hi = self.cell_of(x + Vec3::splat(max_dist));
+        let cells: i64 = (0..3).map(|a| (hi[a] - lo[a] + 1) as i64).product();
+        if cells > 4096 {
+            return None;
+        }
+        let c = [
+            (lo[0] + hi[0]) / 2,
+            (lo[1] + hi[1]) / 2,
+            (lo[2] + hi[2]) / 2,
+        ];
+        let reach = [
+            (hi[0] - lo[0] + 1) / 2 + 1,
+            (hi[1] - lo[1] + 1) / 2 + 1,
+            (hi[2] - lo[2] + 1) / 2 + 1,
+        ];
+        self.sum_around(c, reach, &Self::buckets_for(n))
     }
 }
 
@@ -350,7 +434,10 @@ impl ParticleMap {
             })
             .collect();
         let points: Vec<[f32; 3]> = valid.iter().map(|p| p.position.to_array()).collect();
-        let density = DensityGrid::build(&points, lo, hi);
+        let with_normals: Vec<(Vec3, Vec3)> =
+            valid.iter().map(|p| (p.position, p.normal)).collect();
+        let density = DensityGrid::build(&with_normals, lo, hi);
+        drop(with_normals);
         let tree = if points.is_empty() {
             None
         } else {
@@ -388,6 +475,16 @@ impl ParticleMap {
             f16_to_f32(r.weight[2]),
         ) * self.scale;
         (decode_dir16(r.dir), decode_dir8(r.normal), w)
+    }
+
+    /// False when fewer than `k` particles that could face `n` lie within `max_dist` of `x`
+    /// (a cheap bound from the density grid, no search): a [`ParticleMap::query`] for `k`
+    /// would then report fewer than `k`. True means "maybe".
+    pub fn may_hold(&self, x: Vec3, n: Vec3, k: usize, max_dist: f32) -> bool {
+        match self.density.bound_within(x, n, max_dist) {
+            Some(bound) => bound >= k as u64,
+            None => true,
+        }
     }
 
     /// Distance of `x` from particle `i`'s tangent plane (as stored, in half precision).
@@ -432,7 +529,7 @@ impl ParticleMap {
         // geometric candidates are decoded and given to `contribution`.
         let mut r = self
             .density
-            .radius_for(x, 2 * k)
+            .radius_for(x, n, 2 * k)
             .unwrap_or(max_dist)
             .clamp(1e-3 * max_dist, max_dist);
         let mut cands: Vec<(f32, u32)> = Vec::new();

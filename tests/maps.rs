@@ -92,6 +92,7 @@ fn knn_query_matches_brute_force_with_exclusions() {
     let mut rng = Rng::new(2, 0, 0);
     let mut out = Vec::new();
     let mut fewer = 0;
+    let mut ruled_out = 0;
     for q in 0..400 {
         let x = Vec3::new(
             rng.uniform() * 2.0 - 1.0,
@@ -133,6 +134,14 @@ fn knn_query_matches_brute_force_with_exclusions() {
         brute.sort_by(|a, b| a.0.total_cmp(&b.0));
         brute.truncate(k);
         assert_eq!(got, brute.len(), "query {q}: count");
+        // The density grid's bound may only rule out queries that cannot find k.
+        if !map.may_hold(x, n, k, max_dist) {
+            assert!(
+                got < k,
+                "query {q}: may_hold said no, but {got} >= {k} were found"
+            );
+            ruled_out += 1;
+        }
         let ids: Vec<u32> = out.iter().map(|nb| nb.index).collect();
         let expect: Vec<u32> = brute.iter().map(|b| b.1).collect();
         assert_eq!(ids, expect, "query {q}: particles");
@@ -147,6 +156,7 @@ fn knn_query_matches_brute_force_with_exclusions() {
         fewer > 10 && fewer < 390,
         "the cases should include both full and short answers ({fewer})"
     );
+    eprintln!("{ruled_out} of {fewer} short answers were ruled out by the density bound alone");
 }
 
 /// At most 32 bytes per particle, kd-tree included, measured by a counting allocator. The
@@ -544,4 +554,28 @@ fn bad_map_settings_are_errors() {
         Err(e) => assert!(e.to_string().contains("maps.max_dist"), "{e}"),
         Ok(_) => panic!("max_dist = 0 accepted"),
     }
+}
+
+/// The density grid's bound skips the search on the dark side of a wall: particles on the
+/// +x face of a plane cannot serve a query facing -x, and `may_hold` says so without a search.
+#[test]
+fn the_back_of_a_wall_is_ruled_out_without_a_search() {
+    let mut rng = Rng::new(8, 0, 0);
+    let particles: Vec<ParticleInput> = (0..5000)
+        .map(|_| ParticleInput {
+            position: Vec3::new(0.0, rng.uniform(), rng.uniform()),
+            dir: Vec3::X,
+            normal: Vec3::X,
+            weight: Rgb::ONE,
+            depth: 1,
+            specular_chain: true,
+        })
+        .collect();
+    let map = ParticleMap::build(MapKind::Photons, &particles);
+    let x = Vec3::new(-0.01, 0.5, 0.5);
+    let mut out = Vec::new();
+    assert!(!map.may_hold(x, -Vec3::X, 50, 0.2));
+    assert_eq!(map.query(x, -Vec3::X, 50, 0.2, |_| 1.0, &mut out), 0);
+    assert!(map.may_hold(x, Vec3::X, 50, 0.2));
+    assert_eq!(map.query(x, Vec3::X, 50, 0.2, |_| 1.0, &mut out), 50);
 }
