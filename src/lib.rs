@@ -16,6 +16,7 @@ pub mod film;
 pub mod footprint_sampler;
 pub mod geometry;
 pub mod grid_sampler;
+pub mod heap;
 pub mod image_io;
 pub mod light;
 pub mod loader;

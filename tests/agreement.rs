@@ -67,3 +67,14 @@ fn path_tracer_and_light_tracer_agree_on_cornell() {
         failures.join("\n")
     );
 }
+
+/// The statistics helpers every statistical test relies on (in `common`), against known values.
+#[test]
+fn statistics_helpers_are_right() {
+    // Known values: z_{0.975} = 1.959964, t_{0.975, 30} = 2.042272, P(chi2_10 >= 18.307) = 0.05.
+    assert!((common::normal_quantile(0.975) - 1.959964).abs() < 1e-5);
+    assert!((common::t_critical(0.05, 30.0) - 2.042272).abs() < 2e-3);
+    assert!((common::chi2_sf(18.307038, 10.0) - 0.05).abs() < 1e-5);
+    assert!((common::chi2_sf(3.0, 200.0) - 1.0).abs() < 1e-9);
+    assert!((common::sidak(0.01, 1) - 0.01).abs() < 1e-12);
+}

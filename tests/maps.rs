@@ -21,27 +21,10 @@ use footprint_integrators::passes::{PassSettings, light_pass, view_pass};
 use footprint_integrators::path_tracer::radiance_along;
 use glam::Vec3;
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
-// ---- A counting allocator: the map's real heap footprint, kd-tree included ----
-
-struct Counting;
-static HEAP: AtomicUsize = AtomicUsize::new(0);
-unsafe impl std::alloc::GlobalAlloc for Counting {
-    unsafe fn alloc(&self, l: std::alloc::Layout) -> *mut u8 {
-        let p = unsafe { std::alloc::System.alloc(l) };
-        if !p.is_null() {
-            HEAP.fetch_add(l.size(), Ordering::SeqCst);
-        }
-        p
-    }
-    unsafe fn dealloc(&self, p: *mut u8, l: std::alloc::Layout) {
-        unsafe { std::alloc::System.dealloc(p, l) };
-        HEAP.fetch_sub(l.size(), Ordering::SeqCst);
-    }
-}
+// The real heap footprint of a map, kd-tree included.
 #[global_allocator]
-static GLOBAL: Counting = Counting;
+static GLOBAL: footprint::heap::CountingAlloc = footprint::heap::CountingAlloc;
 
 fn random_particles(n: usize, seed: u64) -> Vec<ParticleInput> {
     let mut rng = Rng::new(seed, 0, 0);
@@ -190,9 +173,9 @@ fn memory_is_at_most_32_bytes_per_particle() {
     }
     for n in [100_000usize, 1_000_000] {
         let particles = random_particles(n, 3);
-        let before = HEAP.load(Ordering::SeqCst);
+        let before = footprint::heap::heap_bytes();
         let map = ParticleMap::build(MapKind::Photons, &particles);
-        let after = HEAP.load(Ordering::SeqCst);
+        let after = footprint::heap::heap_bytes();
         let bytes = after.saturating_sub(before) as f64 / map.len() as f64;
         eprintln!("{n} particles: {bytes:.2} bytes per particle");
         assert!(bytes <= 32.0, "{bytes} bytes per particle");
@@ -213,18 +196,13 @@ fn pass_settings(paths: usize, seed: u64) -> PassSettings {
     }
 }
 
-/// The diffuse albedo of the surface a particle lies on, found by a ray down its normal
-/// (nudged sideways if it slips through the shared edge of two triangles).
+/// The diffuse albedo of the surface a particle lies on, found by a ray down its normal.
 fn albedo_at(scene: &Scene, p: &ParticleInput) -> Rgb {
-    let f = Frame::from_z(p.normal);
-    for k in 0..8 {
-        let nudge = f.x * (k as f32 * 1e-4);
-        let o = p.position + nudge + p.normal * 1e-3;
-        if let Some(h) = scene.intersect(o, -p.normal, 1e-2) {
-            return scene.materials[h.material as usize].kd;
-        }
-    }
-    panic!("no surface under the particle at {}", p.position)
+    let o = p.position + p.normal * 1e-3;
+    let h = scene
+        .intersect(o, -p.normal, 1e-2)
+        .unwrap_or_else(|| panic!("no surface under the particle at {}", p.position));
+    scene.materials[h.material as usize].kd
 }
 
 /// Flux conservation on cornell (all surfaces diffuse, one light): every photon's first hit

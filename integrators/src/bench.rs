@@ -146,6 +146,17 @@ pub fn run(scenes: &Path, seconds: f64) -> Result<()> {
             })
             .collect();
         let bsdfs: Vec<_> = hits.iter().map(|(h, _)| door.bsdf(h)).collect();
+        let points: Vec<ScatterPoint> = hits
+            .iter()
+            .zip(&bsdfs)
+            .map(|((h, wo), bsdf)| ScatterPoint {
+                p: h.p,
+                bsdf,
+                wo: *wo,
+                mode: TransportMode::Importance,
+                throughput: footprint::Rgb::ONE,
+            })
+            .collect();
         let params = GuideParams::default();
         let fp = FootprintSampler::new(&map, params.clone(), max_dist, door.maps.soft_glossy_max);
         let grid = GridSampler::new(&map, params.clone(), max_dist, door.maps.soft_glossy_max);
@@ -155,16 +166,9 @@ pub fn run(scenes: &Path, seconds: f64) -> Result<()> {
         let reps = 5;
         let t = Instant::now();
         for _ in 0..reps {
-            for (i, (h, wo)) in hits.iter().enumerate() {
-                let at = ScatterPoint {
-                    p: h.p,
-                    bsdf: &bsdfs[i],
-                    wo: *wo,
-                    mode: TransportMode::Importance,
-                    throughput: footprint::Rgb::ONE,
-                };
+            for at in &points {
                 std::hint::black_box(map.query(
-                    h.p,
+                    at.p,
                     at.side_normal(),
                     params.k_p,
                     max_dist,
@@ -182,19 +186,12 @@ pub fn run(scenes: &Path, seconds: f64) -> Result<()> {
             let mut state = GuideState::default();
             let (mut t_prep, mut t_sp) = (0.0f64, 0.0f64);
             for _ in 0..reps {
-                for (i, (h, wo)) in hits.iter().enumerate() {
-                    let at = ScatterPoint {
-                        p: h.p,
-                        bsdf: &bsdfs[i],
-                        wo: *wo,
-                        mode: TransportMode::Importance,
-                        throughput: footprint::Rgb::ONE,
-                    };
+                for at in &points {
                     let t0 = Instant::now();
-                    sampler.prepare(&at, &mut state);
+                    sampler.prepare(at, &mut state);
                     let t1 = Instant::now();
-                    if let Some(s) = sampler.sample(&at, &state, &mut rng) {
-                        std::hint::black_box(sampler.pdf(&at, &state, s.wi));
+                    if let Some(s) = sampler.sample(at, &state, &mut rng) {
+                        std::hint::black_box(sampler.pdf(at, &state, s.wi));
                     }
                     let t2 = Instant::now();
                     t_prep += (t1 - t0).as_secs_f64();

@@ -292,24 +292,41 @@ fn preview_exposure(r: &Image) -> f32 {
     (0.18 / m).log2()
 }
 
+impl Row {
+    /// Every field as `(name, value)`, formatted once for both the CSV and the JSON table.
+    fn fields(&self) -> [(&'static str, String); 9] {
+        [
+            ("method", format!("\"{}\"", self.method)),
+            ("time_budget_s", format!("{}", self.time_budget)),
+            ("seconds", format!("{:.4}", self.seconds)),
+            ("map_seconds", format!("{:.4}", self.map_seconds)),
+            ("tracing_seconds", format!("{:.4}", self.tracing_seconds)),
+            ("spp", format!("{}", self.spp)),
+            ("rel_mse", format!("{:.6e}", self.rel_mse)),
+            ("mae", format!("{:.6e}", self.mae)),
+            ("spots", format!("{}", self.spots)),
+        ]
+    }
+}
+
 fn csv(rows: &[Row]) -> String {
-    let mut s = String::from(
-        "method,time_budget_s,seconds,map_seconds,tracing_seconds,spp,rel_mse,mae,spots\n",
-    );
+    let Some(first) = rows.first() else {
+        return String::new();
+    };
+    let mut s = first
+        .fields()
+        .iter()
+        .map(|f| f.0)
+        .collect::<Vec<_>>()
+        .join(",")
+        + "\n";
     for r in rows {
-        let _ = writeln!(
-            s,
-            "{},{},{:.4},{:.4},{:.4},{},{:.6e},{:.6e},{}",
-            r.method,
-            r.time_budget,
-            r.seconds,
-            r.map_seconds,
-            r.tracing_seconds,
-            r.spp,
-            r.rel_mse,
-            r.mae,
-            r.spots
-        );
+        let values: Vec<String> = r
+            .fields()
+            .into_iter()
+            .map(|(_, v)| v.trim_matches('"').to_string())
+            .collect();
+        s += &(values.join(",") + "\n");
     }
     s
 }
@@ -333,18 +350,15 @@ fn json(
         esc(reference)
     );
     for (i, r) in rows.iter().enumerate() {
-        let _ = write!(
+        let fields: Vec<String> = r
+            .fields()
+            .iter()
+            .map(|(k, v)| format!("\"{k}\": {v}"))
+            .collect();
+        let _ = writeln!(
             s,
-            "    {{\"method\": \"{}\", \"time_budget_s\": {}, \"seconds\": {:.4}, \"map_seconds\": {:.4}, \"tracing_seconds\": {:.4}, \"spp\": {}, \"rel_mse\": {:.6e}, \"mae\": {:.6e}, \"spots\": {}}}{}\n",
-            r.method,
-            r.time_budget,
-            r.seconds,
-            r.map_seconds,
-            r.tracing_seconds,
-            r.spp,
-            r.rel_mse,
-            r.mae,
-            r.spots,
+            "    {{{}}}{}",
+            fields.join(", "),
             if i + 1 < rows.len() { "," } else { "" }
         );
     }

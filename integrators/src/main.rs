@@ -13,39 +13,13 @@ use std::time::Instant;
 
 mod bench;
 
-/// Counts the heap bytes in use, so that `maps` can report what a particle map really
-/// occupies (kd-tree included).
-struct CountingAlloc;
-
-static HEAP_BYTES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-
-unsafe impl std::alloc::GlobalAlloc for CountingAlloc {
-    unsafe fn alloc(&self, layout: std::alloc::Layout) -> *mut u8 {
-        let p = unsafe { std::alloc::System.alloc(layout) };
-        if !p.is_null() {
-            HEAP_BYTES.fetch_add(layout.size(), std::sync::atomic::Ordering::Relaxed);
-        }
-        p
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: std::alloc::Layout) {
-        unsafe { std::alloc::System.dealloc(ptr, layout) };
-        HEAP_BYTES.fetch_sub(layout.size(), std::sync::atomic::Ordering::Relaxed);
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: std::alloc::Layout, new_size: usize) -> *mut u8 {
-        let p = unsafe { std::alloc::System.realloc(ptr, layout, new_size) };
-        if !p.is_null() {
-            HEAP_BYTES.fetch_add(new_size, std::sync::atomic::Ordering::Relaxed);
-            HEAP_BYTES.fetch_sub(layout.size(), std::sync::atomic::Ordering::Relaxed);
-        }
-        p
-    }
-}
-
+/// Counts the heap bytes in use, so that `maps` and `render` can report what a particle map
+/// really occupies (kd-tree included).
 #[global_allocator]
-static GLOBAL: CountingAlloc = CountingAlloc;
+static GLOBAL: footprint::heap::CountingAlloc = footprint::heap::CountingAlloc;
 
-pub fn heap_bytes() -> Option<usize> {
-    Some(HEAP_BYTES.load(std::sync::atomic::Ordering::Relaxed))
+fn heap_bytes() -> Option<usize> {
+    Some(footprint::heap::heap_bytes())
 }
 
 #[derive(Parser, Debug)]

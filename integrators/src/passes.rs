@@ -19,7 +19,9 @@
 //! concatenated in chunk order, so a map is reproducible from its seed.
 
 use footprint::Rgb;
-use footprint::bsdf::{Lobes, TransportMode};
+use footprint::bsdf::TransportMode;
+// Particles are stored exactly where the guided samplers use them.
+use footprint::direction_sampler::guides_at;
 use footprint::geometry::{offset_ray_origin, spawn_origin};
 use footprint::math::luminance;
 use footprint::particle_map::ParticleInput;
@@ -62,15 +64,6 @@ const DOMAIN_LIGHT_PASS: u64 = 11;
 const DOMAIN_VIEW_PASS: u64 = 12;
 const CHUNK: usize = 2048;
 
-/// True when particles are stored on (and footprints used at) surfaces with these lobes.
-pub fn stores_particles(lobes: &Lobes, soft_glossy_max: f32) -> bool {
-    match lobes {
-        Lobes::Diffuse { .. } => true,
-        Lobes::Glossy { exponent, .. } => *exponent <= soft_glossy_max,
-        Lobes::Mirror { .. } | Lobes::Glass { .. } => false,
-    }
-}
-
 struct ChunkOut {
     particles: Vec<ParticleInput>,
     escaped: Vec<Rgb>,
@@ -101,7 +94,7 @@ fn trace(
         };
         let wo = -dir;
         let bsdf = scene.bsdf(&hit);
-        if stores_particles(&bsdf.lobes, s.soft_glossy_max) {
+        if guides_at(&bsdf.lobes, s.soft_glossy_max) {
             let n = if hit.ng.dot(wo) >= 0.0 {
                 hit.ng
             } else {

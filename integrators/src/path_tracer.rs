@@ -49,18 +49,7 @@ pub fn light_pos_pdf(scene: &Scene, li: u32) -> f64 {
 /// Estimates the radiance arriving at the camera through raster position `raster`.
 pub fn radiance(scene: &Scene, raster: Vec2, max_depth: u32, rng: &mut Rng) -> Rgb {
     let cam = &scene.camera;
-    let mut state = GuideState::default();
-    trace(
-        scene,
-        cam.position,
-        cam.ray_dir(raster),
-        max_depth,
-        rng,
-        &BsdfSampler,
-        &mut state,
-        false,
-    )
-    .pt
+    radiance_along(scene, cam.position, cam.ray_dir(raster), max_depth, rng)
 }
 
 /// Estimates the radiance arriving at `origin` from direction `-dir` (the ray `origin + t
