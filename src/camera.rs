@@ -7,6 +7,7 @@
 //! §10.3.3; pbrt-v4 `PerspectiveCamera::We`), so a pixel's box-filter importance is
 //! `W_e · pixel_count` inside that pixel.
 
+use crate::filter::PixelFilter;
 use crate::math::Frame;
 use glam::{Vec2, Vec3};
 
@@ -22,6 +23,8 @@ pub struct Camera {
     tan_half_x: f32,
     /// Image plane area at distance 1.
     plane_area: f32,
+    /// Pixel reconstruction filter (box unless the scene asks for another).
+    pub filter: PixelFilter,
 }
 
 /// A light-tracing connection from a surface point to the camera.
@@ -51,21 +54,6 @@ impl Camera {
         if !position.is_finite() || !look_at.is_finite() || !up.is_finite() {
             return Err("camera position, look_at and up must be finite".into());
         }
-        if width == 0 || height == 0 {
-            return Err(format!(
-                "camera resolution must be at least 1x1, got {width}x{height}"
-            ));
-        }
-        if width > 32768 || height > 32768 {
-            return Err(format!(
-                "camera resolution {width}x{height} is larger than 32768 on a side"
-            ));
-        }
-        if !(fov_y_deg > 0.0 && fov_y_deg < 179.0) {
-            return Err(format!(
-                "camera fov_y must be in (0, 179) degrees, got {fov_y_deg}"
-            ));
-        }
         let forward = (look_at - position)
             .try_normalize()
             .ok_or("camera look_at equals position: the look direction is zero")?;
@@ -82,6 +70,41 @@ impl Camera {
             y: true_up,
             z: forward,
         };
+        Camera::from_frame(position, frame, fov_y_deg, width, height)
+    }
+
+    /// Builds a camera from its frame: `x` points right on the image, `y` up, `z` along the
+    /// view (orthonormal; a mirrored, left-handed frame is allowed, as Mitsuba's sensor
+    /// transforms may mirror the image).
+    pub fn from_frame(
+        position: Vec3,
+        frame: Frame,
+        fov_y_deg: f32,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, String> {
+        if !position.is_finite()
+            || !frame.x.is_finite()
+            || !frame.y.is_finite()
+            || !frame.z.is_finite()
+        {
+            return Err("camera position and orientation must be finite".into());
+        }
+        if width == 0 || height == 0 {
+            return Err(format!(
+                "camera resolution must be at least 1x1, got {width}x{height}"
+            ));
+        }
+        if width > 32768 || height > 32768 {
+            return Err(format!(
+                "camera resolution {width}x{height} is larger than 32768 on a side"
+            ));
+        }
+        if !(fov_y_deg > 0.0 && fov_y_deg < 179.0) {
+            return Err(format!(
+                "camera fov_y must be in (0, 179) degrees, got {fov_y_deg}"
+            ));
+        }
         let tan_half_y = (fov_y_deg.to_radians() * 0.5).tan();
         let tan_half_x = tan_half_y * width as f32 / height as f32;
         Ok(Camera {
@@ -93,19 +116,15 @@ impl Camera {
             tan_half_y,
             tan_half_x,
             plane_area: 4.0 * tan_half_x * tan_half_y,
+            filter: PixelFilter::default(),
         })
     }
 
     /// The same camera with another resolution (the field of view stays vertical).
     pub fn with_resolution(&self, width: u32, height: u32) -> Result<Self, String> {
-        Camera::new(
-            self.position,
-            self.position + self.frame.z,
-            self.frame.y,
-            self.fov_y_deg,
-            width,
-            height,
-        )
+        let mut c = Camera::from_frame(self.position, self.frame, self.fov_y_deg, width, height)?;
+        c.filter = self.filter.clone();
+        Ok(c)
     }
 
     pub fn pixel_count(&self) -> usize {

@@ -223,12 +223,23 @@ impl DirectionSampler for BsdfSampler {
 }
 
 /// True when particles guide at surfaces with these lobes: diffuse, and glossy up to the
-/// soft-glossy exponent; never mirrors, glass or strongly glossy lobes.
+/// soft-glossy exponent (the rough conductor and rough plastic by the Blinn exponent of
+/// about the same width); never mirrors, glass, smooth conductors or plastics, thin glass or
+/// strongly glossy lobes.
 pub fn guides_at(lobes: &Lobes, soft_glossy_max: f32) -> bool {
     match lobes {
         Lobes::Diffuse { .. } => true,
         Lobes::Glossy { exponent, .. } => *exponent <= soft_glossy_max,
-        Lobes::Mirror { .. } | Lobes::Glass { .. } => false,
+        // The microfacet kinds by the Blinn exponent of about the same width, 2/α² - 2.
+        Lobes::RoughConductor { distr, .. } | Lobes::RoughPlastic { distr, .. } => {
+            distr.blinn_exponent() <= soft_glossy_max
+        }
+        // Smooth plastic has a delta coat over its diffuse base.
+        Lobes::Mirror { .. }
+        | Lobes::Glass { .. }
+        | Lobes::Conductor { .. }
+        | Lobes::Plastic { .. }
+        | Lobes::ThinGlass { .. } => false,
     }
 }
 

@@ -18,6 +18,8 @@ pub struct Effects {
     pub area_lights: bool,
     pub spot_lights: bool,
     pub point_lights: bool,
+    /// A uniform environment (Mitsuba's `constant` emitter): escaped paths see it.
+    pub environment: bool,
     /// A light path can reach a diffuse or glossy surface after a specular bounce
     /// (L S+ D): needs a specular surface and a non-specular one.
     pub caustics_possible: bool,
@@ -45,14 +47,31 @@ impl Effects {
                     let t = m.tf;
                     e.coloured_filtering |= t.max_element() - t.min_element() > 1e-4;
                 }
+                MaterialKind::Conductor => e.specular_reflection |= m.ks.max_element() > 0.0,
+                MaterialKind::RoughConductor => e.glossy |= m.ks.max_element() > 0.0,
+                MaterialKind::Plastic => {
+                    e.diffuse |= m.kd.max_element() > 0.0;
+                    e.specular_reflection |= m.ks.max_element() > 0.0;
+                }
+                MaterialKind::RoughPlastic => {
+                    e.diffuse |= m.kd.max_element() > 0.0;
+                    e.glossy |= m.ks.max_element() > 0.0;
+                }
+                MaterialKind::ThinGlass => {
+                    e.specular_reflection = true;
+                    e.refraction = true;
+                    let t = m.tf;
+                    e.coloured_filtering |= t.max_element() - t.min_element() > 1e-4;
+                }
             }
-            e.textures |= m.kd_texture.is_some();
+            e.textures |= m.kd_texture.is_some() || m.ks_texture.is_some();
         }
         for l in lights {
             match l {
                 Light::Area { .. } => e.area_lights = true,
                 Light::Spot { .. } => e.spot_lights = true,
                 Light::Point { .. } => e.point_lights = true,
+                Light::Environment { .. } => e.environment = true,
             }
         }
         e.caustics_possible = (e.specular_reflection || e.refraction) && (e.diffuse || e.glossy);

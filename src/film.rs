@@ -2,6 +2,7 @@
 //! writes into. Every value is checked where it is accumulated: a NaN, infinite or negative
 //! sample never reaches a pixel; it is counted and dropped.
 
+use crate::filter::PixelFilter;
 use crate::math::{Rgb, is_valid_rgb, luminance};
 use glam::Vec2;
 
@@ -167,17 +168,16 @@ pub struct SplatList {
 }
 
 impl SplatList {
-    /// Adds `v` at raster position `raster` (box filter) on a `width x height` film;
-    /// invalid values are counted and dropped.
+    /// Adds `v` at raster position `raster` on a `width x height` film, spread over the
+    /// pixels `filter` covers there; invalid values are counted and dropped.
     #[inline]
-    pub fn splat(&mut self, width: u32, height: u32, raster: Vec2, v: Rgb) {
+    pub fn splat(&mut self, filter: &PixelFilter, width: u32, height: u32, raster: Vec2, v: Rgb) {
         let Some(v) = self.stats.check(v) else { return };
         if v.max_element() <= 0.0 {
             return;
         }
-        let x = (raster.x as u32).min(width - 1);
-        let y = (raster.y as u32).min(height - 1);
-        self.entries.push((y * width + x, v));
+        let entries = &mut self.entries;
+        filter.splat_weights(raster, width, height, |i, w| entries.push((i, v * w)));
     }
 
     pub fn len(&self) -> usize {

@@ -1,5 +1,6 @@
 //! Lights: emissive triangles (area lights), spot lights with inner/outer cone angles, point
-//! lights. Each light offers what the two kinds of paths need:
+//! lights, and a uniform environment (Mitsuba's `constant` emitter). Each light offers what
+//! the two kinds of paths need:
 //!
 //! * `sample_li`: a point on the light seen from a shading point (next-event estimation),
 //!   with its density per steradian at the shading point;
@@ -7,6 +8,12 @@
 //!   density per area and directional density per steradian (`pdf_le_dir`); spot lights emit
 //!   in proportion to their falloff, so every photon of a light carries the same flux;
 //! * `power`: the emitted flux, by which lights are chosen.
+//!
+//! The environment is at infinity: it is seen along directions, not at points. Next-event
+//! estimation samples its directions uniformly (a shadow ray of twice the scene's bounding
+//! radius stands for "to infinity"); its emitted rays start on the disk of the scene's bounding
+//! sphere facing the sampled direction (pbrt-v4's `UniformInfiniteLight::SampleLe`), so
+//! `pdf_pos` is per unit area of that disk and its flux is `π r² · 4π · L`.
 
 use crate::geometry::TriangleGeom;
 use crate::math::{Frame, PI, Rgb, luminance};
@@ -30,14 +37,27 @@ pub enum Light {
     /// Isotropic point light of intensity `intensity` (W/sr).
     Point { position: Vec3, intensity: Rgb },
     /// Spot light: intensity `intensity` on its axis, full inside `cos_inner`, falling off
-    /// smoothly to zero at `cos_outer` (smoothstep in cos θ, as pbrt-v4's `SpotLight`).
+    /// to zero at `cos_outer` along `profile`.
     Spot {
         position: Vec3,
         frame: Frame,
         intensity: Rgb,
         cos_inner: f32,
         cos_outer: f32,
+        profile: SpotProfile,
     },
+    /// Uniform radiance `le` arriving from every direction. `center` and `radius` bound the
+    /// scene (set by `Scene::new`).
+    Environment { le: Rgb, center: Vec3, radius: f32 },
+}
+
+/// How a spot light falls off between its inner and outer cone.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpotProfile {
+    /// Smoothstep in cos θ, as pbrt-v4's `SpotLight` (footprint's own scenes).
+    Smoothstep,
+    /// Linear in the angle θ, as Mitsuba 3's `spot` (`beam_width` to `cutoff_angle`).
+    LinearAngle,
 }
 
 /// A point on a light sampled from a shading point.
@@ -84,8 +104,13 @@ fn smoothstep(a: f32, b: f32, x: f32) -> f32 {
 }
 
 impl Light {
+    /// Point and spot lights: a single position, reachable only by connection.
     pub fn is_delta(&self) -> bool {
-        !matches!(self, Light::Area { .. })
+        matches!(self, Light::Point { .. } | Light::Spot { .. })
+    }
+
+    pub fn is_environment(&self) -> bool {
+        matches!(self, Light::Environment { .. })
     }
 
     /// Emitted flux (RGB, W).
@@ -93,16 +118,33 @@ impl Light {
         match self {
             Light::Area { area, le, .. } => *le * (PI * *area),
             Light::Point { intensity, .. } => *intensity * (4.0 * PI),
+            Light::Environment { le, radius, .. } => *le * (4.0 * PI * PI * radius * radius),
             Light::Spot {
                 intensity,
                 cos_inner,
                 cos_outer,
+                profile,
                 ..
-            } => {
-                // ∫ smoothstep over the cone: full cone to cos_inner, and half of the ring
-                // between, as pbrt-v4 approximates it.
-                *intensity * (2.0 * PI * ((1.0 - cos_inner) + 0.5 * (cos_inner - cos_outer)))
-            }
+            } => *intensity * (2.0 * PI * Self::spot_mass(*cos_inner, *cos_outer, *profile)),
+        }
+    }
+
+    /// A spot light with Mitsuba 3's profile: full within `beam` radians of the axis `dir`,
+    /// falling linearly in angle to zero at `cutoff`.
+    pub fn spot_linear_angle(
+        position: Vec3,
+        dir: Vec3,
+        intensity: Rgb,
+        beam: f32,
+        cutoff: f32,
+    ) -> Self {
+        Light::Spot {
+            position,
+            frame: Frame::from_z(dir),
+            intensity,
+            cos_inner: beam.cos(),
+            cos_outer: cutoff.cos(),
+            profile: SpotProfile::LinearAngle,
         }
     }
 
@@ -113,8 +155,42 @@ impl Light {
 
     /// Spot falloff for a direction with cosine `cos_t` to the axis.
     #[inline]
-    fn spot_falloff(cos_t: f32, cos_inner: f32, cos_outer: f32) -> f32 {
-        smoothstep(cos_outer, cos_inner, cos_t)
+    fn spot_falloff(cos_t: f32, cos_inner: f32, cos_outer: f32, profile: SpotProfile) -> f32 {
+        match profile {
+            SpotProfile::Smoothstep => smoothstep(cos_outer, cos_inner, cos_t),
+            SpotProfile::LinearAngle => {
+                if cos_t >= cos_inner {
+                    1.0
+                } else if cos_t <= cos_outer {
+                    0.0
+                } else {
+                    let (ti, to) = (cos_inner.acos(), cos_outer.acos());
+                    ((to - cos_t.clamp(-1.0, 1.0).acos()) / (to - ti)).clamp(0.0, 1.0)
+                }
+            }
+        }
+    }
+
+    /// `∫ falloff d(cos θ)` over `[-1, 1]`: the cap `1 - cos_inner` plus the ring's share.
+    fn spot_mass(cos_inner: f32, cos_outer: f32, profile: SpotProfile) -> f32 {
+        (1.0 - cos_inner) + Self::spot_ring_mass(cos_inner, cos_outer, profile)
+    }
+
+    /// `∫ falloff d(cos θ)` over the ring between the cones. Smoothstep: half the ring (exact
+    /// for a smoothstep in cos θ). Linear in angle, with `t_i`, `t_o` the cone angles:
+    /// `∫_{t_i}^{t_o} (t_o - t)/(t_o - t_i) sin t dt
+    ///   = ((t_o - t_i) cos t_i + sin t_i - sin t_o) / (t_o - t_i)`.
+    fn spot_ring_mass(cos_inner: f32, cos_outer: f32, profile: SpotProfile) -> f32 {
+        match profile {
+            SpotProfile::Smoothstep => 0.5 * (cos_inner - cos_outer),
+            SpotProfile::LinearAngle => {
+                let (ti, to) = (cos_inner.acos() as f64, cos_outer.acos() as f64);
+                if to - ti <= 1e-9 {
+                    return 0.0;
+                }
+                (((to - ti) * ti.cos() + ti.sin() - to.sin()) / (to - ti)) as f32
+            }
+        }
     }
 
     /// Radiance (area) or intensity (delta) leaving the light at `p` toward unit `dir`.
@@ -129,13 +205,17 @@ impl Light {
                 }
             }
             Light::Point { intensity, .. } => *intensity,
+            Light::Environment { le, .. } => *le,
             Light::Spot {
                 frame,
                 intensity,
                 cos_inner,
                 cos_outer,
+                profile,
                 ..
-            } => *intensity * Self::spot_falloff(dir.dot(frame.z), *cos_inner, *cos_outer),
+            } => {
+                *intensity * Self::spot_falloff(dir.dot(frame.z), *cos_inner, *cos_outer, *profile)
+            }
         }
     }
 
@@ -192,6 +272,19 @@ impl Light {
                     delta: true,
                 })
             }
+            Light::Environment { le, radius, .. } => {
+                let wi = sample_uniform_sphere(u);
+                let distance = 2.0 * *radius;
+                Some(LightSample {
+                    p: p_ref + wi * distance,
+                    wi,
+                    distance,
+                    li: *le,
+                    pdf_w: uniform_sphere_pdf(),
+                    n: None,
+                    delta: false,
+                })
+            }
             Light::Spot { position, .. } => {
                 let d = *position - p_ref;
                 let dist2 = d.length_squared();
@@ -230,14 +323,31 @@ impl Light {
                 }
                 dist2 / (cos_l * *area)
             }
+            Light::Environment { .. } => uniform_sphere_pdf(),
             _ => 0.0,
         }
     }
 
     /// Samples an emitted ray: area lights uniformly in area and cosine-weighted in
-    /// direction; point lights uniformly on the sphere; spot lights uniformly in the outer cone.
+    /// direction; point lights uniformly on the sphere; spot lights in proportion to their
+    /// falloff; the environment uniformly in direction, from the bounding disk facing it.
     pub fn sample_le(&self, u_pos: Vec2, u_dir: Vec2) -> Option<LightEmission> {
         match self {
+            Light::Environment { le, center, radius } => {
+                let dir = sample_uniform_sphere(u_dir);
+                let frame = Frame::from_z(dir);
+                let d = crate::sampling::sample_concentric_disk(u_pos) * *radius;
+                let p = *center - dir * *radius + frame.x * d.x + frame.y * d.y;
+                Some(LightEmission {
+                    p,
+                    n: None,
+                    dir,
+                    le: *le,
+                    pdf_pos: 1.0 / (PI * radius * radius),
+                    pdf_dir: uniform_sphere_pdf(),
+                    cos_light: 1.0,
+                })
+            }
             Light::Area {
                 geom, n, area, le, ..
             } => {
@@ -275,9 +385,10 @@ impl Light {
                 frame,
                 cos_inner,
                 cos_outer,
+                profile,
                 ..
             } => {
-                let cos_t = Self::sample_spot_cos(u_dir.x, *cos_inner, *cos_outer);
+                let cos_t = Self::sample_spot_cos(u_dir.x, *cos_inner, *cos_outer, *profile);
                 let sin_t = crate::math::safe_sqrt(1.0 - cos_t * cos_t);
                 let phi = 2.0 * PI * u_dir.y;
                 let dir = frame
@@ -305,34 +416,54 @@ impl Light {
     pub fn pdf_le_dir(&self, dir: Vec3) -> f32 {
         match self {
             Light::Area { n, .. } => cosine_hemisphere_pdf(dir.dot(*n)),
-            Light::Point { .. } => uniform_sphere_pdf(),
+            Light::Point { .. } | Light::Environment { .. } => uniform_sphere_pdf(),
             Light::Spot {
                 frame,
                 cos_inner,
                 cos_outer,
+                profile,
                 ..
             } => {
                 // Proportional to the falloff: falloff / (2π ∫ falloff d(cos θ)).
-                let norm = (1.0 - cos_inner) + 0.5 * (cos_inner - cos_outer);
-                Self::spot_falloff(dir.dot(frame.z), *cos_inner, *cos_outer) / (2.0 * PI * norm)
+                let norm = Self::spot_mass(*cos_inner, *cos_outer, *profile);
+                Self::spot_falloff(dir.dot(frame.z), *cos_inner, *cos_outer, *profile)
+                    / (2.0 * PI * norm)
             }
         }
     }
 
     /// `cos θ` with density proportional to the spot falloff on `[cos_outer, 1]`: the full
-    /// cap `[cos_inner, 1]` with probability equal to its share, else the smoothstep ring,
-    /// whose normalised cdf in `t = (cos θ - cos_outer)/(cos_inner - cos_outer)` is
-    /// `2t³ - t⁴` (inverted by Newton's method). Every photon of a spot light then carries
-    /// the same flux.
-    fn sample_spot_cos(u: f32, cos_inner: f32, cos_outer: f32) -> f32 {
+    /// cap `[cos_inner, 1]` with probability equal to its share, else the ring. The
+    /// smoothstep ring's normalised cdf in `t = (cos θ - cos_outer)/(cos_inner - cos_outer)`
+    /// is `2t³ - t⁴` (inverted by Newton's method); the linear-in-angle ring's cdf in θ (see
+    /// [`Light::spot_ring_mass`]) is inverted by bisection. Every photon of a spot light then
+    /// carries the same flux.
+    fn sample_spot_cos(u: f32, cos_inner: f32, cos_outer: f32, profile: SpotProfile) -> f32 {
         let cap = 1.0 - cos_inner;
-        let ring = 0.5 * (cos_inner - cos_outer);
+        let ring = Self::spot_ring_mass(cos_inner, cos_outer, profile);
         let p_cap = cap / (cap + ring);
         if u < p_cap || ring <= 0.0 {
             let v = if p_cap > 0.0 { (u / p_cap).min(1.0) } else { u };
             return 1.0 - v * cap;
         }
         let v = ((u - p_cap) / (1.0 - p_cap)).clamp(0.0, 1.0);
+        if profile == SpotProfile::LinearAngle {
+            let (ti, to) = (cos_inner.acos() as f64, cos_outer.acos() as f64);
+            // Unnormalised cdf from t_i: [-(t_o - t) cos t - sin t] between t_i and θ.
+            let g = |t: f64| -(to - t) * t.cos() - t.sin();
+            let total = g(to) - g(ti);
+            let target = v as f64 * total + g(ti);
+            let (mut lo, mut hi) = (ti, to);
+            for _ in 0..40 {
+                let mid = 0.5 * (lo + hi);
+                if g(mid) < target {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            return (0.5 * (lo + hi)).cos() as f32;
+        }
         // Solve 2t³ - t⁴ = v on [0, 1]; monotone, derivative 6t² - 4t³ = 2t²(3 - 2t).
         let mut t = v.sqrt().max(1e-3);
         for _ in 0..12 {
@@ -355,6 +486,8 @@ impl Light {
                 (geom.point(b1, b2), Some(*n), 1.0 / *area)
             }
             Light::Point { position, .. } | Light::Spot { position, .. } => (*position, None, 1.0),
+            // At infinity: no position (callers skip the environment).
+            Light::Environment { center, .. } => (*center, None, 0.0),
         }
     }
 }

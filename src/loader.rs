@@ -166,8 +166,25 @@ fn non_negative3(path: &Path, field: &str, v: [f32; 3]) -> Result<Vec3> {
     Ok(v)
 }
 
-/// Loads a scene file (`.toml`).
+/// Loads a scene file: footprint's TOML (`.toml`) or Mitsuba 3 XML (`.xml`).
 pub fn load_scene(path: &Path) -> Result<Scene> {
+    load_scene_with(path, &crate::mitsuba::ImportOptions::default())
+}
+
+/// Loads a scene file; `opts` applies to Mitsuba 3 XML scenes (`-D`, `--lenient`).
+pub fn load_scene_with(path: &Path, opts: &crate::mitsuba::ImportOptions) -> Result<Scene> {
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("xml"))
+    {
+        return crate::mitsuba::load(path, opts);
+    }
+    if !opts.defines.is_empty() {
+        return Err(Error::invalid(
+            path,
+            "-D overrides Mitsuba XML parameters; this is not an .xml scene",
+        ));
+    }
     let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
         path: path.to_path_buf(),
         source,
@@ -319,6 +336,7 @@ fn build_scene(path: &Path, dir: &Path, file: SceneFile) -> Result<Scene> {
                     intensity: non_negative3(path, &format!("{field}.intensity"), *intensity)?,
                     cos_inner: inner_angle.to_radians().cos(),
                     cos_outer: outer_angle.to_radians().cos(),
+                    profile: crate::light::SpotProfile::Smoothstep,
                 }
             }
         });
@@ -487,7 +505,18 @@ fn apply_override(mut m: Material, o: &MaterialOverride) -> Material {
 }
 
 /// Scans OBJ text for vertex lines with non-finite coordinates; returns the first line.
-fn find_bad_vertex(text: &str) -> Option<(usize, String)> {
+/// Degenerate: zero (or non-finite) area, or so thin that its normal is noise.
+pub(crate) fn is_degenerate(geom: &TriangleGeom) -> bool {
+    let len = geom.cross().length();
+    let longest = geom
+        .e1
+        .length()
+        .max(geom.e2.length())
+        .max((geom.e2 - geom.e1).length());
+    !(len.is_finite() && len > 0.0 && len > 1e-10 * longest * longest)
+}
+
+pub(crate) fn find_bad_vertex(text: &str) -> Option<(usize, String)> {
     for (i, line) in text.lines().enumerate() {
         let l = line.trim_start();
         if let Some(rest) = l.strip_prefix("v ").or_else(|| l.strip_prefix("v\t")) {
@@ -633,15 +662,7 @@ fn load_obj(
                 });
             };
             let geom = TriangleGeom::new(p0, p1, p2);
-            let c = geom.cross();
-            let len = c.length();
-            // Degenerate: zero (or non-finite) area, or so thin that its normal is noise.
-            let longest = geom
-                .e1
-                .length()
-                .max(geom.e2.length())
-                .max((p2 - p1).length());
-            if !(len.is_finite() && len > 0.0 && len > 1e-10 * longest * longest) {
+            if is_degenerate(&geom) {
                 stats.degenerate_skipped += 1;
                 continue;
             }

@@ -7,8 +7,13 @@
 //! | `illum` 3 or 5 | perfect mirror of reflectance `Ks` (white when `Ks` is black) |
 //! | `illum` 4, 6 or 7, or `Ni` > 1 with `Tf` set | smooth dielectric, IOR `Ni`, transmittance `Tf` |
 //! | `Ke` | emission: the faces become area lights of radiance `Ke` |
+//!
+//! Mitsuba 3 scenes (`crate::mitsuba`) add the kinds Mitsuba's BSDFs need: smooth and rough
+//! conductors with a complex index of refraction, smooth and rough plastic, and the thin
+//! dielectric sheet; the mapping is tabled in `docs/mitsuba.md`.
 
 use crate::Rgb;
+use crate::rough_plastic::RoughPlasticTables;
 
 /// The kind of scattering a material does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -21,6 +26,28 @@ pub enum MaterialKind {
     Mirror,
     /// Smooth dielectric interface with coloured transmittance.
     Glass,
+    /// Smooth conductor: mirror reflection weighted by the conductor Fresnel term of the
+    /// complex IOR `eta + i k`, times `ks` (Mitsuba `conductor`).
+    Conductor,
+    /// Microfacet conductor (Mitsuba `roughconductor`): distribution `microfacet` with
+    /// roughness `alpha`, conductor Fresnel of `eta + i k`, times `ks`.
+    RoughConductor,
+    /// Smooth dielectric coating (IOR `ni`, reflectance `ks`) over a Lambertian base `kd`
+    /// (Mitsuba `plastic`).
+    Plastic,
+    /// Microfacet dielectric coating (`microfacet`, `alpha`, IOR `ni`, reflectance `ks`) over
+    /// a Lambertian base `kd` (Mitsuba `roughplastic`).
+    RoughPlastic,
+    /// Thin dielectric sheet of IOR `ni` (Mitsuba `thindielectric`): reflection and straight
+    /// transmission with the multiple internal reflections summed.
+    ThinGlass,
+}
+
+/// Microfacet normal distribution of the rough kinds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Microfacet {
+    Beckmann,
+    Ggx,
 }
 
 impl MaterialKind {
@@ -30,6 +57,8 @@ impl MaterialKind {
             "glossy" => MaterialKind::Glossy,
             "mirror" => MaterialKind::Mirror,
             "glass" => MaterialKind::Glass,
+            // The Mitsuba kinds need parameters the TOML format does not carry; Mitsuba XML
+            // scenes set them directly.
             _ => return None,
         })
     }
@@ -44,16 +73,37 @@ pub struct Material {
     pub kd: Rgb,
     /// Index into the scene's textures modulating `kd`.
     pub kd_texture: Option<u32>,
-    /// Glossy reflectance (Glossy) or mirror reflectance (Mirror).
+    /// Glossy reflectance (Glossy), mirror reflectance (Mirror), or the specular
+    /// reflectance factor (Conductor, RoughConductor, Plastic, RoughPlastic, ThinGlass).
     pub ks: Rgb,
+    /// Index into the scene's textures modulating `ks`.
+    pub ks_texture: Option<u32>,
     /// Blinn exponent (Glossy).
     pub ns: f32,
     /// Transmittance of one passage through the object (Glass).
     pub tf: Rgb,
-    /// Index of refraction (Glass).
+    /// Relative index of refraction, interior over exterior (Glass, Plastic, RoughPlastic,
+    /// ThinGlass).
     pub ni: f32,
+    /// Real part of a conductor's relative complex IOR, per channel.
+    pub eta: Rgb,
+    /// Imaginary part (absorption) of a conductor's relative complex IOR, per channel.
+    pub k: Rgb,
+    /// Microfacet roughness α (RoughConductor, RoughPlastic).
+    pub alpha: f32,
+    pub microfacet: Microfacet,
+    /// False: the surface scatters only on the side its shading normal faces and is black
+    /// seen from the back (a Mitsuba BSDF not wrapped in `twosided`). Transmissive kinds
+    /// ignore it.
+    pub two_sided: bool,
+    /// Plastic: Mitsuba's `nonlinear` (the diffuse base's internal scattering tints it).
+    pub nonlinear: bool,
     /// Emitted radiance; non-zero makes the faces area lights.
     pub ke: Rgb,
+    /// RoughPlastic: the coating's precomputed tables, filled by [`Material::prepared`].
+    /// Without them (or when `alpha`, `ni` or `microfacet` changed since), the BSDF fetches
+    /// them from the process-wide cache at every hit, which is correct but takes a lock.
+    pub rough_plastic: Option<&'static RoughPlasticTables>,
 }
 
 impl Default for Material {
@@ -64,10 +114,18 @@ impl Default for Material {
             kd: Rgb::splat(0.5),
             kd_texture: None,
             ks: Rgb::ZERO,
+            ks_texture: None,
             ns: 1.0,
             tf: Rgb::ONE,
             ni: 1.5,
+            eta: Rgb::ONE,
+            k: Rgb::ZERO,
+            alpha: 0.1,
+            microfacet: Microfacet::Ggx,
+            two_sided: true,
+            nonlinear: false,
             ke: Rgb::ZERO,
+            rough_plastic: None,
         }
     }
 }
@@ -112,6 +170,7 @@ impl Material {
             tf,
             ni,
             ke,
+            ..Material::default()
         }
         .sanitized()
     }
@@ -136,6 +195,21 @@ impl Material {
         if !(self.ni > 0.0) {
             self.ni = 1.5;
         }
+        self
+    }
+
+    /// The material ready for rendering: a RoughPlastic gets its coating's tables (computed
+    /// once per distinct `(microfacet, alpha, ni)`, a fraction of a second, then cached).
+    /// Loaders call it on every material after `sanitized`.
+    pub fn prepared(mut self) -> Self {
+        self.rough_plastic = match self.kind {
+            MaterialKind::RoughPlastic => Some(RoughPlasticTables::get(
+                self.microfacet,
+                self.alpha,
+                self.ni,
+            )),
+            _ => None,
+        };
         self
     }
 

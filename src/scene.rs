@@ -129,6 +129,12 @@ pub struct Scene {
     pub stats: LoadStats,
     /// Scene bounding box.
     pub bounds: (Vec3, Vec3),
+    /// What a lenient import replaced, one line each (empty otherwise).
+    pub import_notes: Vec<String>,
+    /// Index of the environment light, if any (at most one).
+    pub environment_light: Option<u32>,
+    /// Parameters the scene was loaded with (`-D name=value ...`), part of a reference's key.
+    pub source_params: String,
 }
 
 impl Scene {
@@ -168,9 +174,6 @@ impl Scene {
                 }
             }
         }
-        let powers: Vec<f32> = lights.iter().map(|l| l.power()).collect();
-        let light_distribution = Distribution1D::new(&powers)
-            .ok_or("the scene has no lights (no emissive material with Ke > 0 and no [[light]] with intensity > 0)")?;
         let mut lo = Vec3::splat(f32::INFINITY);
         let mut hi = Vec3::splat(f32::NEG_INFINITY);
         for t in &triangles {
@@ -179,6 +182,33 @@ impl Scene {
                 hi = hi.max(p);
             }
         }
+        // The environment surrounds the scene's bounding sphere (camera included).
+        let (blo, bhi) = (lo.min(camera.position), hi.max(camera.position));
+        let (center, radius) = (
+            0.5 * (blo + bhi),
+            (0.5 * (bhi - blo).length()).max(1e-3) * 1.01,
+        );
+        for l in &mut lights {
+            if let Light::Environment {
+                center: c,
+                radius: r,
+                ..
+            } = l
+            {
+                *c = center;
+                *r = radius;
+            }
+        }
+        let powers: Vec<f32> = lights.iter().map(|l| l.power()).collect();
+        let light_distribution = Distribution1D::new(&powers)
+            .ok_or("the scene has no lights (no emissive material with Ke > 0 and no [[light]] with intensity > 0)")?;
+        let envs: Vec<u32> = (0..lights.len() as u32)
+            .filter(|&i| lights[i as usize].is_environment())
+            .collect();
+        if envs.len() > 1 {
+            return Err("the scene has more than one environment light".into());
+        }
+        let environment_light = envs.first().copied();
         let bvh = Bvh::build(&triangles);
         let effects = Effects::analyse(&materials, &shading, &lights);
         Ok(Scene {
@@ -196,6 +226,9 @@ impl Scene {
             effects,
             stats,
             bounds: (lo, hi),
+            import_notes: Vec::new(),
+            source_params: String::new(),
+            environment_light,
         })
     }
 
@@ -250,7 +283,11 @@ impl Scene {
             Some(t) => m.kd * self.textures[t as usize].lookup(hit.uv),
             None => m.kd,
         };
-        Bsdf::new(Lobes::new(m, kd), hit.ns, hit.ng)
+        let ks = match m.ks_texture {
+            Some(t) => m.ks * self.textures[t as usize].lookup(hit.uv),
+            None => m.ks,
+        };
+        Bsdf::new(Lobes::new(m, kd, ks), hit.ns, hit.ng)
     }
 
     /// Shadow ray from surface point `p` (normal `ng`) to `target`; `target_n` is the normal
@@ -282,6 +319,13 @@ impl Scene {
         self.maps
             .max_dist
             .unwrap_or(0.05 * (self.bounds.1 - self.bounds.0).length())
+    }
+
+    /// The environment light, if the scene has one, with its index.
+    #[inline]
+    pub fn environment(&self) -> Option<(u32, &Light)> {
+        self.environment_light
+            .map(|i| (i, &self.lights[i as usize]))
     }
 
     /// Probability of choosing light `i`.

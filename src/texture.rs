@@ -1,15 +1,34 @@
-//! Image textures (`map_Kd`): decoded once to linear RGB, looked up bilinearly with wrapping.
+//! Textures: images (`map_Kd`, Mitsuba `bitmap`) decoded once to linear RGB and looked up
+//! bilinearly with wrapping, and Mitsuba's procedural `checkerboard`.
+//!
+//! Texture coordinates arrive as stored on the triangles, OBJ convention (`v` up). A lookup
+//! first turns them into image convention `(u, 1 - v)` (`v` down, row 0 at the top; what
+//! Mitsuba 3's OBJ loader stores), then applies the texture's optional `to_uv` transform
+//! (Mitsuba's `to_uv`), then reads the image or evaluates the pattern there.
 
 use crate::Rgb;
 use crate::error::{Error, Result};
-use glam::Vec2;
+use glam::{Affine2, Vec2};
 use std::path::Path;
 
 #[derive(Clone, Debug)]
+pub enum TextureKind {
+    /// An image, row-major, top row first, linear RGB.
+    Bitmap {
+        width: u32,
+        height: u32,
+        texels: Vec<Rgb>,
+    },
+    /// Mitsuba 3's checkerboard: `color0` where `frac(u) > 1/2` equals `frac(v) > 1/2`,
+    /// `color1` elsewhere.
+    Checkerboard { color0: Rgb, color1: Rgb },
+}
+
+#[derive(Clone, Debug)]
 pub struct Texture {
-    pub width: u32,
-    pub height: u32,
-    texels: Vec<Rgb>,
+    pub kind: TextureKind,
+    /// Transform of the image-convention texture coordinates.
+    pub to_uv: Option<Affine2>,
 }
 
 /// sRGB transfer function to linear.
@@ -43,44 +62,75 @@ impl Texture {
             .pixels()
             .map(|p| Rgb::new(lut[p[0] as usize], lut[p[1] as usize], lut[p[2] as usize]))
             .collect();
-        Ok(Texture {
-            width,
-            height,
-            texels,
-        })
+        Ok(Texture::from_texels(width, height, texels))
     }
 
     /// A texture from linear texels, row-major, top row first.
     pub fn from_texels(width: u32, height: u32, texels: Vec<Rgb>) -> Self {
         assert_eq!(texels.len(), (width * height) as usize);
         Texture {
-            width,
-            height,
-            texels,
+            kind: TextureKind::Bitmap {
+                width,
+                height,
+                texels,
+            },
+            to_uv: None,
         }
     }
 
-    #[inline]
-    fn texel(&self, x: i64, y: i64) -> Rgb {
-        let x = x.rem_euclid(self.width as i64) as usize;
-        let y = y.rem_euclid(self.height as i64) as usize;
-        self.texels[y * self.width as usize + x]
+    /// Mitsuba's checkerboard.
+    pub fn checkerboard(color0: Rgb, color1: Rgb) -> Self {
+        Texture {
+            kind: TextureKind::Checkerboard { color0, color1 },
+            to_uv: None,
+        }
     }
 
-    /// Bilinear lookup at `uv` (`v` up, as in OBJ), wrapping.
+    /// Size in texels (a procedural texture has none: 0 x 0).
+    pub fn size(&self) -> (u32, u32) {
+        match &self.kind {
+            TextureKind::Bitmap { width, height, .. } => (*width, *height),
+            TextureKind::Checkerboard { .. } => (0, 0),
+        }
+    }
+
+    /// Lookup at `uv` (`v` up, as stored on triangles); bilinear and wrapping for images.
     pub fn lookup(&self, uv: Vec2) -> Rgb {
-        if !uv.is_finite() {
-            return self.texel(0, 0);
+        let uv = if uv.is_finite() { uv } else { Vec2::ZERO };
+        let mut st = Vec2::new(uv.x, 1.0 - uv.y);
+        if let Some(t) = &self.to_uv {
+            st = t.transform_point2(st);
         }
-        let x = uv.x * self.width as f32 - 0.5;
-        let y = (1.0 - uv.y) * self.height as f32 - 0.5;
-        let x0 = x.floor();
-        let y0 = y.floor();
-        let fx = x - x0;
-        let fy = y - y0;
-        let (x0, y0) = (x0 as i64, y0 as i64);
-        let a = self.texel(x0, y0).lerp(self.texel(x0 + 1, y0), fx);
-        let b = self.texel(x0, y0 + 1).lerp(self.texel(x0 + 1, y0 + 1), fx);
-        a.lerp(b, fy)
+        match &self.kind {
+            TextureKind::Bitmap {
+                width,
+                height,
+                texels,
+            } => {
+                let texel = |x: i64, y: i64| {
+                    let x = x.rem_euclid(*width as i64) as usize;
+                    let y = y.rem_euclid(*height as i64) as usize;
+                    texels[y * *width as usize + x]
+                };
+                let x = st.x * *width as f32 - 0.5;
+                let y = st.y * *height as f32 - 0.5;
+                if !(x.is_finite() && y.is_finite()) {
+                    return texel(0, 0);
+                }
+                let x0 = x.floor();
+                let y0 = y.floor();
+                let fx = x - x0;
+                let fy = y - y0;
+                let (x0, y0) = (x0 as i64, y0 as i64);
+                let a = texel(x0, y0).lerp(texel(x0 + 1, y0), fx);
+                let b = texel(x0, y0 + 1).lerp(texel(x0 + 1, y0 + 1), fx);
+                a.lerp(b, fy)
+            }
+            TextureKind::Checkerboard { color0, color1 } => {
+                let mx = st.x - st.x.floor() > 0.5;
+                let my = st.y - st.y.floor() > 0.5;
+                if mx == my { *color0 } else { *color1 }
+            }
+        }
     }
 }

@@ -66,13 +66,13 @@ fn a_stale_reference_cache_is_rendered_again() {
     let mut scene = load_scene(&path).unwrap();
     scene.camera = scene.camera.with_resolution(16, 16).unwrap();
     let mut log = |_: &str| {};
-    let (a, how) = reference(&path, &scene, None, 4, 4, &mut log).unwrap();
+    let (a, how) = reference(&path, &scene, None, 4, 4, None, &mut log).unwrap();
     assert!(how.starts_with("rendered"), "{how}");
-    let (b, how) = reference(&path, &scene, None, 4, 4, &mut log).unwrap();
+    let (b, how) = reference(&path, &scene, None, 4, 4, None, &mut log).unwrap();
     assert!(how.starts_with("cached"), "{how}");
     assert_eq!(a.pixels, b.pixels);
     // Other settings: the cache is stale.
-    let (_, how) = reference(&path, &scene, None, 8, 4, &mut log).unwrap();
+    let (_, how) = reference(&path, &scene, None, 8, 4, None, &mut log).unwrap();
     assert!(how.starts_with("rendered"), "{how}");
     // A changed material: stale again.
     let mtl = path.with_file_name("cornell.mtl");
@@ -85,9 +85,9 @@ fn a_stale_reference_cache_is_rendered_again() {
         s.camera = s.camera.with_resolution(16, 16).unwrap();
         s
     };
-    let (_, how) = reference(&path, &scene, None, 8, 4, &mut log).unwrap();
+    let (_, how) = reference(&path, &scene, None, 8, 4, None, &mut log).unwrap();
     assert!(how.starts_with("rendered"), "{how}");
-    let (_, how) = reference(&path, &scene, None, 8, 4, &mut log).unwrap();
+    let (_, how) = reference(&path, &scene, None, 8, 4, None, &mut log).unwrap();
     assert!(how.starts_with("cached"), "{how}");
 }
 

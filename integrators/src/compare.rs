@@ -113,6 +113,8 @@ pub struct CompareSettings {
     pub ladder: Vec<f64>,
     /// Samples per pixel of the reference (combined image, BSDF sampling).
     pub reference_spp: u32,
+    /// Folder of the reference cache (default: the scene's folder).
+    pub reference_cache: Option<PathBuf>,
     pub out: PathBuf,
     pub seed: u64,
 }
@@ -144,21 +146,27 @@ pub fn reference_key(scene_path: &Path, scene: &Scene, spp: u32, max_depth: u32)
     let text = std::fs::read(scene_path)
         .with_context(|| format!("cannot read {}", scene_path.display()))?;
     eat(&text);
-    // The meshes the scene names (and their materials), by content.
+    // Every file the scene names (meshes, their materials, textures), by content: any quoted
+    // string that is a file beside the scene, in TOML (`file = "x.obj"`) as in Mitsuba XML
+    // (`value="models/x.obj"`).
     let dir = scene_path.parent().unwrap_or(Path::new("."));
-    for line in String::from_utf8_lossy(&text).lines() {
-        let l = line.trim();
-        if let Some(rest) = l.strip_prefix("file") {
-            let f = rest.trim_start_matches([' ', '=']).trim().trim_matches('"');
-            let p = dir.join(f);
-            if let Ok(obj) = std::fs::read(&p) {
-                eat(&obj);
-                if let Ok(mtl) = std::fs::read(p.with_extension("mtl")) {
-                    eat(&mtl);
-                }
+    let text = String::from_utf8_lossy(&text).to_string();
+    for (i, quoted) in text.split('"').enumerate() {
+        if i % 2 == 0 || quoted.is_empty() || quoted.len() > 400 || quoted.contains('\n') {
+            continue;
+        }
+        let p = dir.join(quoted);
+        if p.is_file() {
+            if let Ok(bytes) = std::fs::read(&p) {
+                eat(&bytes);
+            }
+            if let Ok(mtl) = std::fs::read(p.with_extension("mtl")) {
+                eat(&mtl);
             }
         }
     }
+    // Parameters given on the command line (`-D`).
+    eat(scene.source_params.as_bytes());
     Ok(format!(
         "scene={h:016x} res={}x{} spp={spp} max_depth={max_depth} method=combined-bsdf v{}",
         scene.camera.width,
@@ -172,14 +180,17 @@ fn cached_key(path: &Path) -> Option<String> {
     footprint::image_io::read_exr_text_attribute(path, "footprint/reference_key")
 }
 
-/// The reference: `given`, or the cache next to the scene when its key matches, or a fresh
-/// render (written to the cache). Returns the image and where it came from.
+/// The reference: `given`, or the cache in `cache_dir` (default: the scene's folder) when its
+/// key matches, or a fresh render (written to the cache). Returns the image and where it
+/// came from.
+#[allow(clippy::too_many_arguments)]
 pub fn reference(
     scene_path: &Path,
     scene: &Scene,
     given: Option<&Path>,
     spp: u32,
     max_depth: u32,
+    cache_dir: Option<&Path>,
     log: &mut dyn FnMut(&str),
 ) -> Result<(Image, String)> {
     if let Some(p) = given {
@@ -201,10 +212,14 @@ pub fn reference(
         .file_stem()
         .map(|s| s.to_string_lossy().to_string())
         .unwrap_or("scene".into());
-    let cache = scene_path.with_file_name(format!(
+    let name = format!(
         ".{stem}-reference-{}x{}.exr",
         scene.camera.width, scene.camera.height
-    ));
+    );
+    let cache = match cache_dir {
+        Some(d) => d.join(name),
+        None => scene_path.with_file_name(name),
+    };
     if cache.exists() {
         if cached_key(&cache).as_deref() == Some(key.as_str()) {
             if let Ok(img) = read_exr(&cache) {
@@ -510,6 +525,7 @@ pub fn run(
         given_ref,
         s.reference_spp,
         max_depth,
+        s.reference_cache.as_deref(),
         log,
     )?;
     let exposure = preview_exposure(&reference);

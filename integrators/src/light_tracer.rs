@@ -45,6 +45,8 @@ struct Vtx {
     p: Vec3,
     n: Option<Vec3>,
     bsdf: Option<Bsdf>,
+    /// The path left this vertex by a delta lobe.
+    delta: bool,
 }
 
 /// Traces one light path and splats its camera connections.
@@ -78,7 +80,7 @@ pub fn trace(
             };
             if le.max_element() > 0.0 && visible {
                 let v = le * (cos_l * conn.we_geom * pixels / (em.pdf_pos * pmf));
-                splats.lt.splat(w, h, conn.raster, v);
+                splats.lt.splat(&cam.filter, w, h, conn.raster, v);
                 if let Some(c) = splats.combined.as_deref_mut() {
                     // k = 1: the camera path could hit an area light here, nothing else.
                     let p0 = if em.n.is_some() {
@@ -92,6 +94,7 @@ pub fn trace(
                         0.0
                     };
                     c.splat(
+                        &cam.filter,
                         w,
                         h,
                         conn.raster,
@@ -152,6 +155,7 @@ pub fn trace(
         p: em.p,
         n: em.n,
         bsdf: None,
+        delta: false,
     }; 2];
 
     for depth in 1..max_depth {
@@ -166,6 +170,7 @@ pub fn trace(
                 None => to_area(light.pdf_le_dir(dir) as f64, em.p, hit.p, Some(hit.ng)),
                 Some(b) => step_area(
                     &b,
+                    before[0].delta,
                     before[0].p,
                     (before[1].p - before[0].p).normalize_or_zero(),
                     hit.p,
@@ -177,7 +182,14 @@ pub fn trace(
                     let d = if depth == 2 && em.n.is_none() {
                         0.0 // a camera path cannot hit a delta light
                     } else {
-                        step_area(&b, before[0].p, dir, before[1].p, before[1].n)
+                        step_area(
+                            &b,
+                            before[0].delta,
+                            before[0].p,
+                            dir,
+                            before[1].p,
+                            before[1].n,
+                        )
                     };
                     if depth == 2 {
                         pf_light = d
@@ -185,9 +197,6 @@ pub fn trace(
                         r_prod *= d
                     }
                 }
-            }
-            if depth == 1 {
-                y1_delta = bsdf.is_delta();
             }
         }
 
@@ -198,7 +207,7 @@ pub fn trace(
                 let f = bsdf.eval(wo, wi, TransportMode::Importance);
                 if f.max_element() > 0.0 && scene.visible_from_camera(hit.p, hit.ng) {
                     let v = beta * f * (wi.dot(hit.ns).abs() * conn.we_geom * pixels);
-                    splats.lt.splat(w, h, conn.raster, v);
+                    splats.lt.splat(&cam.filter, w, h, conn.raster, v);
                     if let Some(c) = splats.combined.as_deref_mut() {
                         let cam_area = to_area(
                             cam.pdf_dir((-wi).dot(cam.frame.z)) as f64,
@@ -209,7 +218,7 @@ pub fn trace(
                         let now = if depth == 1 && em.n.is_none() {
                             0.0
                         } else {
-                            step_area(&bsdf, hit.p, wi, before[0].p, before[0].n)
+                            step_area(&bsdf, false, hit.p, wi, before[0].p, before[0].n)
                         };
                         let (p0, p1) = if depth == 1 {
                             (cam_area * now, cam_area * p_l)
@@ -218,6 +227,7 @@ pub fn trace(
                             (base * pf_light, if y1_delta { 0.0 } else { base * p_l })
                         };
                         c.splat(
+                            &cam.filter,
                             w,
                             h,
                             conn.raster,
@@ -247,11 +257,16 @@ pub fn trace(
         if !beta.is_finite() || beta.max_element() <= 0.0 {
             break;
         }
+        if depth == 1 {
+            // Whether y1 left by a delta lobe: next-event estimation cannot reach it then.
+            y1_delta = s.delta;
+        }
         before[1] = before[0];
         before[0] = Vtx {
             p: hit.p,
             n: Some(hit.ng),
             bsdf: Some(bsdf),
+            delta: s.delta,
         };
         if depth + 1 >= RR_START_DEPTH {
             let q = (luminance(beta) / beta_start).min(1.0).max(0.05);

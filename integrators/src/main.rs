@@ -3,7 +3,6 @@
 use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand, ValueEnum};
 use footprint::image_io::{write_exr, write_png};
-use footprint::loader::load_scene;
 use footprint::scene::Scene;
 use footprint_integrators::{Integrator, RenderOptions};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -131,7 +130,7 @@ impl GuideArgs {
 enum Command {
     /// Render a scene to an EXR (linear float RGB) and a PNG preview
     Render {
-        /// Scene file (.toml)
+        /// Scene file: footprint TOML (.toml) or Mitsuba 3 XML (.xml)
         scene: PathBuf,
         /// Integrator [default: the scene's render.integrator, else pt]
         #[arg(long, value_enum)]
@@ -165,16 +164,20 @@ enum Command {
         guide: GuideArgs,
         #[command(flatten)]
         maps: MapArgs,
+        #[command(flatten)]
+        import: ImportArgs,
     },
     /// Build the photon map and the importance map and write pictures of them seen from the camera
     Maps {
-        /// Scene file (.toml)
+        /// Scene file: footprint TOML (.toml) or Mitsuba 3 XML (.xml)
         scene: PathBuf,
         /// Folder for photons.png and importons.png (created if missing)
         #[arg(long, short)]
         out: PathBuf,
         #[command(flatten)]
         maps: MapArgs,
+        #[command(flatten)]
+        import: ImportArgs,
         /// Maximum path length in segments [default: the scene's render.max_depth]
         #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
         max_depth: Option<u32>,
@@ -188,7 +191,7 @@ enum Command {
     /// Compare methods at equal time (map passes included) against a reference: table, error
     /// against time, parameter sweeps, and an HTML page
     Compare {
-        /// Scene file (.toml)
+        /// Scene file: footprint TOML (.toml) or Mitsuba 3 XML (.xml)
         scene: PathBuf,
         /// Equal-time budget in seconds per method (the top of the ladder)
         #[arg(long, default_value_t = 8.0)]
@@ -203,6 +206,9 @@ enum Command {
         /// Samples per pixel of a rendered reference
         #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..))]
         reference_spp: u32,
+        /// Folder for the cached reference [default: the scene's folder]
+        #[arg(long)]
+        reference_cache: Option<PathBuf>,
         /// Methods, comma-separated, each INTEGRATOR-GUIDE (pt|lt|combined - bsdf|grid|footprint)
         /// [default: pt and lt with each guide, and combined-footprint]
         #[arg(long, value_delimiter = ',')]
@@ -230,6 +236,28 @@ enum Command {
         guide: GuideArgs,
         #[command(flatten)]
         maps: MapArgs,
+        #[command(flatten)]
+        import: ImportArgs,
+    },
+    /// Print the error metrics of `footprint compare` (relative MSE, mean absolute error,
+    /// spots) of an image against a reference, e.g. for another renderer's image
+    Metrics {
+        /// Image (EXR)
+        image: PathBuf,
+        /// Reference (EXR, same size)
+        #[arg(long)]
+        reference: PathBuf,
+    },
+    /// Write a scene as Mitsuba 3 XML (scene.xml + one OBJ per material in meshes/), for
+    /// rendering it with Mitsuba; the XML takes -D resx, resy, spp, max_depth, rfilter
+    Export {
+        /// Scene file: footprint TOML (.toml) or Mitsuba 3 XML (.xml)
+        scene: PathBuf,
+        /// Output folder (created if missing)
+        #[arg(long, short)]
+        out: PathBuf,
+        #[command(flatten)]
+        import: ImportArgs,
     },
     /// Measure speed: closest-hit rays per second on door, path samples per second on cornell
     Bench {
@@ -243,6 +271,34 @@ enum Command {
         #[arg(long)]
         threads: Option<usize>,
     },
+}
+
+/// Scene-import flags (Mitsuba 3 XML scenes).
+#[derive(clap::Args, Debug, Clone)]
+struct ImportArgs {
+    /// Set a Mitsuba XML parameter, overriding its <default> (repeatable), as Mitsuba's own
+    /// -D: `-D resx=128 -D resy=72`
+    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = footprint::mitsuba::parse_define)]
+    define: Vec<(String, String)>,
+    /// Replace unsupported Mitsuba elements with documented stand-ins (listed on stderr)
+    /// instead of stopping with an error
+    #[arg(long)]
+    lenient: bool,
+}
+
+impl ImportArgs {
+    /// Loads the scene file with these flags; prints what a lenient import replaced.
+    fn load(&self, path: &Path) -> Result<Scene> {
+        let opts = footprint::mitsuba::ImportOptions {
+            defines: self.define.clone(),
+            lenient: self.lenient,
+        };
+        let sc = footprint::loader::load_scene_with(path, &opts)?;
+        for n in &sc.import_notes {
+            eprintln!("note: {n}");
+        }
+        Ok(sc)
+    }
 }
 
 /// Particle-map flags, shared by the commands that build maps.
@@ -286,8 +342,13 @@ impl MapArgs {
 }
 
 /// Loads a scene and applies the map flags and a resolution override.
-fn load_scene_with(path: &Path, maps: &MapArgs, resolution: Option<(u32, u32)>) -> Result<Scene> {
-    let mut sc = load_scene(path)?;
+fn load_scene_with(
+    path: &Path,
+    import: &ImportArgs,
+    maps: &MapArgs,
+    resolution: Option<(u32, u32)>,
+) -> Result<Scene> {
+    let mut sc = import.load(path)?;
     maps.apply(&mut sc)?;
     if let Some((w, h)) = resolution {
         sc.camera = sc
@@ -354,6 +415,7 @@ fn run(cli: Cli) -> Result<()> {
             threads,
             guide,
             maps,
+            import,
         } => {
             set_threads(threads)?;
             if let Some(t) = time {
@@ -365,7 +427,7 @@ fn run(cli: Cli) -> Result<()> {
                 bail!("--exposure must be finite");
             }
             let t0 = Instant::now();
-            let sc = load_scene_with(&scene, &maps, resolution)?;
+            let sc = load_scene_with(&scene, &import, &maps, resolution)?;
             let load_time = t0.elapsed();
             let mut opts = RenderOptions::from_scene(&sc);
             if let Some(i) = integrator {
@@ -405,9 +467,10 @@ fn run(cli: Cli) -> Result<()> {
             max_depth,
             seed,
             threads,
+            import,
         } => {
             set_threads(threads)?;
-            let mut sc = load_scene(&scene)?;
+            let mut sc = import.load(&scene)?;
             maps.apply(&mut sc)?;
             maps_command(&sc, &out, max_depth, seed)
         }
@@ -417,6 +480,7 @@ fn run(cli: Cli) -> Result<()> {
             ladder,
             reference,
             reference_spp,
+            reference_cache,
             methods,
             sweep,
             out,
@@ -426,9 +490,10 @@ fn run(cli: Cli) -> Result<()> {
             threads,
             guide,
             maps,
+            import,
         } => {
             set_threads(threads)?;
-            let mut sc = load_scene_with(&scene, &maps, resolution)?;
+            let mut sc = load_scene_with(&scene, &import, &maps, resolution)?;
             if !(time.is_finite() && time > 0.0) {
                 bail!("--time must be a positive number of seconds, got {time}");
             }
@@ -465,6 +530,7 @@ fn run(cli: Cli) -> Result<()> {
                 variants,
                 ladder,
                 reference_spp,
+                reference_cache: reference_cache.clone(),
                 out: out.clone(),
                 seed,
             };
@@ -493,6 +559,37 @@ fn run(cli: Cli) -> Result<()> {
                 out.display(),
                 start.elapsed().as_secs_f64()
             );
+            Ok(())
+        }
+        Command::Metrics { image, reference } => {
+            use footprint_integrators::compare::{mae, rel_mse, spots};
+            let x = footprint::image_io::read_exr(&image)?;
+            let r = footprint::image_io::read_exr(&reference)?;
+            if (x.width, x.height) != (r.width, r.height) {
+                bail!(
+                    "{} is {}x{}, the reference {}x{}",
+                    image.display(),
+                    x.width,
+                    x.height,
+                    r.width,
+                    r.height
+                );
+            }
+            println!(
+                "rel_mse={:.6e} mae={:.6e} spots={}",
+                rel_mse(&x, &r),
+                mae(&x, &r),
+                spots(&x, &r)
+            );
+            Ok(())
+        }
+        Command::Export { scene, out, import } => {
+            let sc = import.load(&scene)?;
+            let notes = footprint::mitsuba::export::export(&sc, &scene, &out)?;
+            for n in &notes {
+                eprintln!("note: {n}");
+            }
+            println!("{} -> {}", scene.display(), out.join("scene.xml").display());
             Ok(())
         }
         Command::Bench {

@@ -39,16 +39,20 @@ pub fn to_area(pdf_w: f64, from: Vec3, to: Vec3, n_to: Option<Vec3>) -> f64 {
 }
 
 /// The unguided area density of sampling `next` from a vertex with `bsdf` at `p`, given the
-/// path's other neighbour in direction `toward_other` (unit). Delta vertices give 1.
+/// path's other neighbour in direction `toward_other` (unit). `delta`: the path's direction
+/// at this vertex came from a delta lobe (per sample, not per BSDF: smooth plastic mixes a
+/// delta coat with a diffuse base); such steps give 1 (in both directions), and the BSDF's
+/// `pdf`, which covers its non-delta lobes only, is used for the others.
 #[inline]
 pub fn step_area(
     bsdf: &Bsdf,
+    delta: bool,
     p: Vec3,
     toward_other: Vec3,
     next: Vec3,
     n_next: Option<Vec3>,
 ) -> f64 {
-    if bsdf.is_delta() {
+    if delta || bsdf.is_delta() {
         return 1.0;
     }
     let wi = (next - p).normalize_or_zero();

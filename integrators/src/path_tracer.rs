@@ -82,6 +82,8 @@ struct Prev {
     p: Vec3,
     n: Option<Vec3>,
     bsdf: Option<Bsdf>,
+    /// The path left this vertex by a delta lobe.
+    delta: bool,
 }
 
 /// Traces one path from `origin` along `dir`. With `combined`, `origin` must be the camera
@@ -117,6 +119,7 @@ pub fn trace(
         p: origin,
         n: None,
         bsdf: None,
+        delta: false,
     }; 2];
     let mut x1_delta = false;
 
@@ -139,6 +142,7 @@ pub fn trace(
                 ),
                 Some(b) => step_area(
                     &b,
+                    before[0].delta,
                     before[0].p,
                     (before[1].p - before[0].p).normalize_or_zero(),
                     hit.p,
@@ -149,11 +153,15 @@ pub fn trace(
             // Light-direction density of x_{j-2} from x_{j-1}, now that x_j is known.
             if depth >= 3 {
                 if let Some(b) = before[0].bsdf {
-                    b_back *= step_area(&b, before[0].p, dir, before[1].p, before[1].n);
+                    b_back *= step_area(
+                        &b,
+                        before[0].delta,
+                        before[0].p,
+                        dir,
+                        before[1].p,
+                        before[1].n,
+                    );
                 }
-            }
-            if depth == 1 {
-                x1_delta = bsdf.is_delta();
             }
         }
 
@@ -173,7 +181,7 @@ pub fn trace(
                         let p_l = light_pos_pdf(scene, li);
                         let p0 = d_fwd;
                         let p1 = match before[0].bsdf {
-                            Some(b) if !b.is_delta() && last_fwd > 0.0 => d_fwd / last_fwd * p_l,
+                            Some(_) if !before[0].delta && last_fwd > 0.0 => d_fwd / last_fwd * p_l,
                             _ => 0.0,
                         };
                         let pk = if depth == 1 {
@@ -234,7 +242,7 @@ pub fn trace(
                         let fwd_l = if ls.delta {
                             0.0
                         } else {
-                            step_area(&bsdf, hit.p, wo, ls.p, ls.n)
+                            step_area(&bsdf, false, hit.p, wo, ls.p, ls.n)
                         };
                         let p0 = d_fwd * fwd_l;
                         let p1 = d_fwd * p_l;
@@ -244,7 +252,7 @@ pub fn trace(
                             let emit =
                                 to_area(light.pdf_le_dir(-ls.wi) as f64, ls.p, hit.p, Some(hit.ng));
                             let back = if depth >= 2 {
-                                step_area(&bsdf, hit.p, ls.wi, before[0].p, before[0].n)
+                                step_area(&bsdf, false, hit.p, ls.wi, before[0].p, before[0].n)
                             } else {
                                 1.0
                             };
@@ -267,11 +275,16 @@ pub fn trace(
         prev_delta = s.delta;
         prev_pdf_w = s.pdf_w;
         prev_p = hit.p;
+        if depth == 1 {
+            // Whether x1 left by a delta lobe: light tracing cannot connect to it then.
+            x1_delta = s.delta;
+        }
         before[1] = before[0];
         before[0] = Prev {
             p: hit.p,
             n: Some(hit.ng),
             bsdf: Some(bsdf),
+            delta: s.delta,
         };
         if depth >= RR_START_DEPTH {
             let q = beta.max_element().min(1.0).max(0.05);

@@ -23,7 +23,6 @@ use footprint::grid_sampler::GridSampler;
 use footprint::particle_map::{MapKind, ParticleMap};
 use footprint::rng::Rng;
 use footprint::scene::Scene;
-use glam::Vec2;
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
 
@@ -292,7 +291,9 @@ pub fn render_with(
                         let index =
                             passes as u64 * npix as u64 + (y as u64 * cam.width as u64 + x as u64);
                         let mut rng = Rng::new(opts.seed, DOMAIN_PT, index);
-                        let raster = Vec2::new(x as f32, y as f32) + rng.uniform2();
+                        let raster =
+                            cam.filter
+                                .sample_raster(x, y, cam.width, cam.height, rng.uniform2());
                         let c = path_tracer::trace(
                             scene,
                             cam.position,

@@ -141,25 +141,7 @@ impl ChiSquareTest {
             .map(|(o, e)| (*o, e * n))
             .collect();
         cells.push((outside, (1.0 - integral).max(0.0) * n));
-        let mut chi2 = 0.0;
-        let mut bins = 0usize;
-        let (mut pool_o, mut pool_e) = (0.0, 0.0);
-        for (o, e) in cells {
-            if e < 5.0 {
-                pool_o += o;
-                pool_e += e;
-            } else {
-                chi2 += (o - e) * (o - e) / e;
-                bins += 1;
-            }
-        }
-        if pool_e > 0.0 {
-            chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e;
-            bins += 1;
-        } else if pool_o > 0.0 {
-            // Samples where the pdf says there can be none.
-            chi2 = f64::INFINITY;
-        }
+        let (chi2, bins) = pearson_pooled(cells);
         let dof = bins.saturating_sub(1).max(1);
         let p_value = if chi2.is_finite() {
             super::chi2_sf(chi2, dof as f64)
@@ -173,4 +155,30 @@ impl ChiSquareTest {
             integral,
         }
     }
+}
+
+/// Pearson's statistic over `(observed, expected)` cells, cells expecting fewer than 5
+/// pooled into one; returns the statistic and the number of bins. Observations where nothing
+/// is expected give an infinite statistic.
+pub fn pearson_pooled(cells: impl IntoIterator<Item = (f64, f64)>) -> (f64, usize) {
+    let mut chi2 = 0.0;
+    let mut bins = 0usize;
+    let (mut pool_o, mut pool_e) = (0.0, 0.0);
+    for (o, e) in cells {
+        if e < 5.0 {
+            pool_o += o;
+            pool_e += e;
+        } else {
+            chi2 += (o - e) * (o - e) / e;
+            bins += 1;
+        }
+    }
+    if pool_e > 0.0 {
+        chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e;
+        bins += 1;
+    } else if pool_o > 0.0 {
+        // Samples where the pdf says there can be none.
+        chi2 = f64::INFINITY;
+    }
+    (chi2, bins)
 }

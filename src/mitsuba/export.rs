@@ -1,0 +1,428 @@
+//! Writes a loaded scene as a Mitsuba 3 scene: `scene.xml` plus one OBJ per material in
+//! `meshes/` (Mitsuba's OBJ loader ignores `.mtl` files, so meshes are split by material),
+//! so that Mitsuba 3 can render footprint's own scenes and the two renderers can be compared
+//! on them (`footprint export`).
+//!
+//! The XML reads its image size, samples, depth and pixel filter from `<default>` parameters
+//! (`resx`, `resy`, `spp`, `max_depth`, `rfilter`), so either renderer can change them with
+//! `-D`. Materials map one to one except two that Mitsuba 3 lacks, which are written as their
+//! nearest Mitsuba counterparts and reported: the normalised Blinn lobe over a diffuse base
+//! (as `roughplastic`, Beckmann, `α = sqrt(2 / (n + 2))`, IOR 1.5) and the smoothstep spot
+//! profile (as Mitsuba's linear-in-angle `spot`). footprint reads the exported file back with
+//! Mitsuba's definitions, so a comparison of the two renderers on it is exact either way.
+
+use crate::Rgb;
+use crate::error::{Error, Result};
+use crate::light::{Light, SpotProfile};
+use crate::material::{Material, MaterialKind, Microfacet};
+use crate::scene::Scene;
+use crate::texture::TextureKind;
+use glam::{Vec2, Vec3};
+use std::collections::HashMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+fn v3(v: Vec3) -> String {
+    format!("{:?}, {:?}, {:?}", v.x, v.y, v.z)
+}
+
+fn rgb(name: &str, c: Rgb) -> String {
+    format!("<rgb name=\"{name}\" value=\"{}\"/>", v3(c))
+}
+
+/// A name usable as an XML id and a file name.
+fn slug(s: &str, i: usize) -> String {
+    let t: String = s
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    format!("m{i}_{t}")
+}
+
+/// What the export approximated, one line each.
+pub type ExportNotes = Vec<String>;
+
+/// Writes `scene` (loaded from `source`) into folder `out` as `scene.xml` + `meshes/*.obj`.
+pub fn export(scene: &Scene, source: &Path, out: &Path) -> Result<ExportNotes> {
+    let werr = |p: &Path, e: std::io::Error| Error::Write {
+        path: p.to_path_buf(),
+        message: e.to_string(),
+    };
+    let mesh_dir = out.join("meshes");
+    std::fs::create_dir_all(&mesh_dir).map_err(|e| werr(&mesh_dir, e))?;
+    let mut notes = Vec::new();
+    let cam = &scene.camera;
+    let s = &scene.settings;
+    let mut x = String::new();
+    let _ = writeln!(x, "<scene version=\"3.0.0\">");
+    let _ = writeln!(
+        x,
+        "  <!-- Written by `footprint export` from {}. Mitsuba's OBJ loader ignores .mtl files:\n       one OBJ per material, world space. -->",
+        source.display()
+    );
+    let filter = match cam.filter.kind {
+        crate::filter::FilterKind::Box => "box",
+        crate::filter::FilterKind::Tent { .. } => "tent",
+        crate::filter::FilterKind::Gaussian { .. } => "gaussian",
+    };
+    for (k, v) in [
+        ("spp", s.spp.to_string()),
+        ("resx", cam.width.to_string()),
+        ("resy", cam.height.to_string()),
+        ("max_depth", s.max_depth.to_string()),
+        ("rfilter", filter.to_string()),
+    ] {
+        let _ = writeln!(x, "  <default name=\"{k}\" value=\"{v}\"/>");
+    }
+    let _ = writeln!(
+        x,
+        "  <integrator type=\"path\"><integer name=\"max_depth\" value=\"$max_depth\"/></integrator>"
+    );
+    let target = cam.position + cam.frame.z;
+    let _ = writeln!(x, "  <sensor type=\"perspective\">");
+    let _ = writeln!(
+        x,
+        "    <float name=\"fov\" value=\"{:?}\"/><string name=\"fov_axis\" value=\"y\"/>",
+        cam.fov_y_deg
+    );
+    // Mitsuba's image x runs along -(local x) = up x dir; a mirrored frame cannot be a lookat.
+    if cam.frame.z.cross(cam.frame.y).dot(cam.frame.x) < 0.0 {
+        return Err(Error::Other(
+            "export: the camera frame is mirrored; a lookat cannot express it".into(),
+        ));
+    }
+    let _ = writeln!(
+        x,
+        "    <transform name=\"to_world\"><lookat origin=\"{}\" target=\"{}\" up=\"{}\"/></transform>",
+        v3(cam.position),
+        v3(target),
+        v3(cam.frame.y)
+    );
+    let _ = writeln!(
+        x,
+        "    <sampler type=\"independent\"><integer name=\"sample_count\" value=\"$spp\"/></sampler>"
+    );
+    let _ = writeln!(
+        x,
+        "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"$resx\"/><integer name=\"height\" value=\"$resy\"/><rfilter type=\"$rfilter\"/></film>"
+    );
+    let _ = writeln!(x, "  </sensor>");
+
+    // Triangles grouped by material, in material order.
+    let mut groups: Vec<Vec<usize>> = vec![Vec::new(); scene.materials.len()];
+    for (i, sh) in scene.shading.iter().enumerate() {
+        groups[sh.material as usize].push(i);
+    }
+    let mut texture_files: HashMap<u32, String> = HashMap::new();
+    for (mi, tris) in groups.iter().enumerate() {
+        if tris.is_empty() {
+            continue;
+        }
+        let m = &scene.materials[mi];
+        let id = slug(&m.name, mi);
+        let bsdf = bsdf_xml(scene, m, &id, &mut notes, &mut texture_files, out)?;
+        let _ = writeln!(x, "{bsdf}");
+        let smooth = tris.iter().all(|&t| scene.shading[t].normals.is_some());
+        let obj = write_obj(scene, tris, smooth);
+        let obj_path = mesh_dir.join(format!("{id}.obj"));
+        std::fs::write(&obj_path, obj).map_err(|e| werr(&obj_path, e))?;
+        let _ = writeln!(x, "  <shape type=\"obj\" id=\"shape_{id}\">");
+        let _ = writeln!(
+            x,
+            "    <string name=\"filename\" value=\"meshes/{id}.obj\"/>"
+        );
+        if !smooth {
+            let _ = writeln!(x, "    <boolean name=\"face_normals\" value=\"true\"/>");
+        }
+        let _ = writeln!(x, "    <ref id=\"{id}\"/>");
+        if m.emits() {
+            let _ = writeln!(
+                x,
+                "    <emitter type=\"area\">{}</emitter>",
+                rgb("radiance", m.ke)
+            );
+        }
+        let _ = writeln!(x, "  </shape>");
+    }
+    for l in &scene.lights {
+        match l {
+            Light::Area { .. } => {}
+            Light::Environment { le, .. } => {
+                let _ = writeln!(
+                    x,
+                    "  <emitter type=\"constant\">{}</emitter>",
+                    rgb("radiance", *le)
+                );
+            }
+            Light::Point {
+                position,
+                intensity,
+            } => {
+                let _ = writeln!(
+                    x,
+                    "  <emitter type=\"point\"><point name=\"position\" value=\"{}\"/>{}</emitter>",
+                    v3(*position),
+                    rgb("intensity", *intensity)
+                );
+            }
+            Light::Spot {
+                position,
+                frame,
+                intensity,
+                cos_inner,
+                cos_outer,
+                profile,
+            } => {
+                if *profile == SpotProfile::Smoothstep {
+                    notes.push(format!(
+                        "spot light at {}: its smoothstep falloff is written as Mitsuba's linear-in-angle falloff over the same cones",
+                        v3(*position)
+                    ));
+                }
+                let _ = writeln!(
+                    x,
+                    "  <emitter type=\"spot\">\n    <transform name=\"to_world\"><lookat origin=\"{}\" target=\"{}\" up=\"{}\"/></transform>\n    {}<float name=\"cutoff_angle\" value=\"{:?}\"/><float name=\"beam_width\" value=\"{:?}\"/>\n  </emitter>",
+                    v3(*position),
+                    v3(*position + frame.z),
+                    v3(frame.x),
+                    rgb("intensity", *intensity),
+                    cos_outer.clamp(-1.0, 1.0).acos().to_degrees(),
+                    cos_inner.clamp(-1.0, 1.0).acos().to_degrees()
+                );
+            }
+        }
+    }
+    let _ = writeln!(x, "</scene>");
+    let xml_path = out.join("scene.xml");
+    std::fs::write(&xml_path, x).map_err(|e| werr(&xml_path, e))?;
+    Ok(notes)
+}
+
+fn colour_or_texture(
+    scene: &Scene,
+    name: &str,
+    c: Rgb,
+    tex: Option<u32>,
+    texture_files: &mut HashMap<u32, String>,
+    out: &Path,
+) -> Result<String> {
+    let Some(t) = tex else {
+        return Ok(rgb(name, c));
+    };
+    if c != Rgb::ONE {
+        return Err(Error::Other(format!(
+            "export: '{name}' is a texture scaled by {c:?}; Mitsuba's bitmap has no scale"
+        )));
+    }
+    let texture = &scene.textures[t as usize];
+    let transform = texture.to_uv.map(|a| {
+        format!(
+            "<transform name=\"to_uv\"><matrix value=\"{:?} {:?} 0 {:?} {:?} {:?} 0 {:?} 0 0 1 0 0 0 0 1\"/></transform>",
+            a.matrix2.x_axis.x, a.matrix2.y_axis.x, a.translation.x,
+            a.matrix2.x_axis.y, a.matrix2.y_axis.y, a.translation.y
+        )
+    }).unwrap_or_default();
+    Ok(match &texture.kind {
+        TextureKind::Checkerboard { color0, color1 } => format!(
+            "<texture name=\"{name}\" type=\"checkerboard\">{}{}{transform}</texture>",
+            rgb("color0", *color0),
+            rgb("color1", *color1)
+        ),
+        TextureKind::Bitmap {
+            width,
+            height,
+            texels,
+        } => {
+            let file = texture_files
+                .entry(t)
+                .or_insert_with(|| format!("meshes/texture{t}.png"))
+                .clone();
+            let mut img = image::RgbImage::new(*width, *height);
+            for (i, p) in img.pixels_mut().enumerate() {
+                let c = texels[i];
+                let e = |v: f32| {
+                    (crate::image_io::linear_to_srgb(v).clamp(0.0, 1.0) * 255.0).round() as u8
+                };
+                *p = image::Rgb([e(c.x), e(c.y), e(c.z)]);
+            }
+            let path = out.join(&file);
+            img.save(&path).map_err(|e| Error::Write {
+                path: path.clone(),
+                message: e.to_string(),
+            })?;
+            format!(
+                "<texture name=\"{name}\" type=\"bitmap\"><string name=\"filename\" value=\"{file}\"/>{transform}</texture>"
+            )
+        }
+    })
+}
+
+fn bsdf_xml(
+    scene: &Scene,
+    m: &Material,
+    id: &str,
+    notes: &mut ExportNotes,
+    tf: &mut HashMap<u32, String>,
+    out: &Path,
+) -> Result<String> {
+    // The microfacet properties when `m` is of the rough kind `k`.
+    let rough = |k: MaterialKind| {
+        if m.kind != k {
+            return String::new();
+        }
+        let dist = match m.microfacet {
+            Microfacet::Beckmann => "beckmann",
+            Microfacet::Ggx => "ggx",
+        };
+        format!(
+            "<string name=\"distribution\" value=\"{dist}\"/><float name=\"alpha\" value=\"{:?}\"/>",
+            m.alpha
+        )
+    };
+    let inner = match m.kind {
+        MaterialKind::Diffuse => format!(
+            "<bsdf type=\"diffuse\">{}</bsdf>",
+            colour_or_texture(scene, "reflectance", m.kd, m.kd_texture, tf, out)?
+        ),
+        MaterialKind::Glossy => {
+            let alpha = (2.0 / (m.ns + 2.0)).sqrt();
+            notes.push(format!(
+                "material '{}': the Blinn lobe (Ns {}) has no Mitsuba counterpart; written as roughplastic (beckmann, alpha {alpha:.4}, IOR 1.5)",
+                m.name, m.ns
+            ));
+            format!(
+                "<bsdf type=\"roughplastic\"><string name=\"distribution\" value=\"beckmann\"/><float name=\"alpha\" value=\"{alpha:?}\"/><float name=\"int_ior\" value=\"1.5\"/><float name=\"ext_ior\" value=\"1.0\"/>{}</bsdf>",
+                colour_or_texture(scene, "diffuse_reflectance", m.kd, m.kd_texture, tf, out)?
+            )
+        }
+        MaterialKind::Mirror => format!(
+            "<bsdf type=\"conductor\"><string name=\"material\" value=\"none\"/>{}</bsdf>",
+            colour_or_texture(scene, "specular_reflectance", m.ks, m.ks_texture, tf, out)?
+        ),
+        MaterialKind::Conductor | MaterialKind::RoughConductor => {
+            let rough = rough(MaterialKind::RoughConductor);
+            let ior = if m.eta == Rgb::ZERO && m.k == Rgb::ZERO {
+                "<string name=\"material\" value=\"none\"/>".to_string()
+            } else {
+                format!("{}{}", rgb("eta", m.eta), rgb("k", m.k))
+            };
+            format!(
+                "<bsdf type=\"{}\">{rough}{ior}{}</bsdf>",
+                if rough.is_empty() {
+                    "conductor"
+                } else {
+                    "roughconductor"
+                },
+                colour_or_texture(scene, "specular_reflectance", m.ks, m.ks_texture, tf, out)?
+            )
+        }
+        MaterialKind::Plastic | MaterialKind::RoughPlastic => {
+            let rough = rough(MaterialKind::RoughPlastic);
+            format!(
+                "<bsdf type=\"{}\">{rough}<float name=\"int_ior\" value=\"{:?}\"/><float name=\"ext_ior\" value=\"1.0\"/><boolean name=\"nonlinear\" value=\"{}\"/>{}{}</bsdf>",
+                if rough.is_empty() {
+                    "plastic"
+                } else {
+                    "roughplastic"
+                },
+                m.ni,
+                m.nonlinear,
+                colour_or_texture(scene, "diffuse_reflectance", m.kd, m.kd_texture, tf, out)?,
+                colour_or_texture(scene, "specular_reflectance", m.ks, m.ks_texture, tf, out)?
+            )
+        }
+        MaterialKind::Glass | MaterialKind::ThinGlass => {
+            // footprint's `tf` is per passage through a solid (two interfaces) for glass.
+            let st = if m.kind == MaterialKind::Glass {
+                Rgb::new(m.tf.x.sqrt(), m.tf.y.sqrt(), m.tf.z.sqrt())
+            } else {
+                m.tf
+            };
+            return Ok(format!(
+                "  <bsdf type=\"{}\" id=\"{id}\"><float name=\"int_ior\" value=\"{:?}\"/><float name=\"ext_ior\" value=\"1.0\"/>{}</bsdf>",
+                if m.kind == MaterialKind::Glass {
+                    "dielectric"
+                } else {
+                    "thindielectric"
+                },
+                m.ni,
+                rgb("specular_transmittance", st)
+            ));
+        }
+    };
+    Ok(if m.two_sided {
+        format!("  <bsdf type=\"twosided\" id=\"{id}\">{inner}</bsdf>")
+    } else {
+        // One-sided: the id goes on the BSDF itself.
+        format!(
+            "  {}",
+            inner.replacen("<bsdf ", &format!("<bsdf id=\"{id}\" "), 1)
+        )
+    })
+}
+
+/// The triangles `tris` as an OBJ (shared vertices deduplicated exactly).
+fn write_obj(scene: &Scene, tris: &[usize], smooth: bool) -> String {
+    let mut o = String::new();
+    let mut index: HashMap<[u32; 8], usize> = HashMap::new();
+    let mut faces = String::new();
+    let mut nv = 0usize;
+    let has_uv = tris.iter().all(|&t| scene.shading[t].uvs.is_some());
+    for &t in tris {
+        let g = &scene.triangles[t];
+        let sh = &scene.shading[t];
+        let ps = [g.p0, g.p0 + g.e1, g.p0 + g.e2];
+        let mut f = [0usize; 3];
+        for k in 0..3 {
+            let n = if smooth {
+                sh.normals.unwrap()[k]
+            } else {
+                Vec3::ZERO
+            };
+            let uv = if has_uv {
+                sh.uvs.unwrap()[k]
+            } else {
+                Vec2::ZERO
+            };
+            let key = [
+                ps[k].x.to_bits(),
+                ps[k].y.to_bits(),
+                ps[k].z.to_bits(),
+                n.x.to_bits(),
+                n.y.to_bits(),
+                n.z.to_bits(),
+                uv.x.to_bits(),
+                uv.y.to_bits(),
+            ];
+            f[k] = *index.entry(key).or_insert_with(|| {
+                nv += 1;
+                let _ = writeln!(o, "v {:?} {:?} {:?}", ps[k].x, ps[k].y, ps[k].z);
+                if smooth {
+                    let _ = writeln!(o, "vn {:?} {:?} {:?}", n.x, n.y, n.z);
+                }
+                if has_uv {
+                    let _ = writeln!(o, "vt {:?} {:?}", uv.x, uv.y);
+                }
+                nv
+            });
+        }
+        let _ = match (smooth, has_uv) {
+            (true, true) => writeln!(
+                faces,
+                "f {0}/{0}/{0} {1}/{1}/{1} {2}/{2}/{2}",
+                f[0], f[1], f[2]
+            ),
+            (true, false) => writeln!(faces, "f {0}//{0} {1}//{1} {2}//{2}", f[0], f[1], f[2]),
+            (false, true) => writeln!(faces, "f {0}/{0} {1}/{1} {2}/{2}", f[0], f[1], f[2]),
+            (false, false) => writeln!(faces, "f {} {} {}", f[0], f[1], f[2]),
+        };
+    }
+    o.push_str(&faces);
+    o
+}

@@ -1,0 +1,493 @@
+//! The XML side of the Mitsuba 3 importer: `$name` substitution from `<default>` elements and
+//! `-D name=value`, typed property lookup (`integer`, `float`, `boolean`, `string`, `rgb`,
+//! `spectrum`, `point`, `vector`, `transform`) with the element's line for every error, and
+//! a check that every property of an object was understood (Mitsuba 3 itself rejects
+//! unreferenced properties the same way).
+
+use crate::Rgb;
+use crate::error::{Error, Result};
+use glam::{Mat4, Vec3, Vec4};
+use roxmltree::Node;
+use std::cell::RefCell;
+use std::collections::{HashMap, HashSet};
+use std::path::{Path, PathBuf};
+
+/// Tags that carry a named property value.
+const PROPERTY_TAGS: &[&str] = &[
+    "integer",
+    "float",
+    "boolean",
+    "string",
+    "rgb",
+    "spectrum",
+    "point",
+    "vector",
+    "transform",
+];
+
+/// What the importer needs while walking the document.
+pub struct Doc<'a> {
+    pub path: &'a Path,
+    pub dir: PathBuf,
+    pub xml: &'a roxmltree::Document<'a>,
+    /// `<default>` values, overridden by the command line's `-D`.
+    pub params: HashMap<String, String>,
+    pub lenient: bool,
+    /// What `--lenient` replaced, one line each.
+    pub notes: RefCell<Vec<String>>,
+}
+
+impl<'a> Doc<'a> {
+    /// `file:line:column` of a node.
+    pub fn pos(&self, node: Node) -> (usize, usize) {
+        let p = self.xml.text_pos_at(node.range().start);
+        (p.row as usize, p.col as usize)
+    }
+
+    /// An error at `node`.
+    pub fn err(&self, node: Node, message: impl Into<String>) -> Error {
+        let (line, column) = self.pos(node);
+        Error::Syntax {
+            path: self.path.to_path_buf(),
+            line,
+            column,
+            message: message.into(),
+        }
+    }
+
+    /// Something footprint does not support: an error naming it and what is supported, or,
+    /// with `--lenient`, a note saying which stand-in replaces it.
+    pub fn unsupported(
+        &self,
+        node: Node,
+        what: &str,
+        supported: &str,
+        stand_in: &str,
+    ) -> Result<()> {
+        if self.lenient {
+            let (line, _) = self.pos(node);
+            self.notes.borrow_mut().push(format!(
+                "{}:{line}: {what} is not supported; --lenient: {stand_in}",
+                self.path.display()
+            ));
+            Ok(())
+        } else {
+            Err(self.err(
+                node,
+                format!("{what} is not supported (supported: {supported}); --lenient replaces it with {stand_in}"),
+            ))
+        }
+    }
+
+    /// Attribute `name` of `node` with `$param` references substituted.
+    pub fn attr(&self, node: Node, name: &str) -> Result<Option<String>> {
+        match node.attribute(name) {
+            None => Ok(None),
+            Some(v) => self.substitute(node, v).map(Some),
+        }
+    }
+
+    /// Attribute that must be present.
+    pub fn req_attr(&self, node: Node, name: &str) -> Result<String> {
+        self.attr(node, name)?.ok_or_else(|| {
+            self.err(
+                node,
+                format!("<{}> needs the attribute '{name}'", node.tag_name().name()),
+            )
+        })
+    }
+
+    fn substitute(&self, node: Node, v: &str) -> Result<String> {
+        if !v.contains('$') {
+            return Ok(v.to_string());
+        }
+        let mut out = String::new();
+        let mut rest = v;
+        while let Some(i) = rest.find('$') {
+            out.push_str(&rest[..i]);
+            let tail = &rest[i + 1..];
+            let end = tail
+                .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+                .unwrap_or(tail.len());
+            let name = &tail[..end];
+            if name.is_empty() {
+                out.push('$');
+            } else {
+                let value = self.params.get(name).ok_or_else(|| {
+                    self.err(
+                        node,
+                        format!("'${name}' has no value: add <default name=\"{name}\" value=\"...\"/> or pass -D {name}=..."),
+                    )
+                })?;
+                out.push_str(value);
+            }
+            rest = &tail[end..];
+        }
+        out.push_str(rest);
+        Ok(out)
+    }
+
+    /// Child elements of `node`.
+    pub fn children(&self, node: Node<'a, 'a>) -> impl Iterator<Item = Node<'a, 'a>> {
+        node.children().filter(|c| c.is_element())
+    }
+
+    /// Resolves a path relative to the scene file's folder.
+    pub fn file(&self, name: &str) -> PathBuf {
+        self.dir.join(name)
+    }
+}
+
+/// Parses a list of numbers separated by commas and/or white space.
+pub fn numbers(s: &str) -> Option<Vec<f32>> {
+    s.split(|c: char| c == ',' || c.is_whitespace())
+        .filter(|t| !t.is_empty())
+        .map(|t| t.parse::<f32>().ok().filter(|v| v.is_finite()))
+        .collect()
+}
+
+/// The properties and nested objects of one Mitsuba object (`<bsdf>`, `<shape>`, ...), with
+/// a record of which were read.
+pub struct Props<'a, 'd> {
+    doc: &'d Doc<'a>,
+    named: HashMap<String, Node<'a, 'a>>,
+    used: RefCell<HashSet<String>>,
+    /// Nested objects without a `name` (a shape's bsdf, emitter, a `ref`).
+    pub unnamed: Vec<Node<'a, 'a>>,
+}
+
+impl<'a, 'd> Props<'a, 'd> {
+    pub fn new(doc: &'d Doc<'a>, node: Node<'a, 'a>) -> Result<Self> {
+        let mut named = HashMap::new();
+        let mut unnamed = Vec::new();
+        for c in doc.children(node) {
+            match doc.attr(c, "name")? {
+                Some(n) => {
+                    if named.insert(n.clone(), c).is_some() {
+                        return Err(doc.err(c, format!("property '{n}' is given twice")));
+                    }
+                }
+                None => {
+                    if PROPERTY_TAGS.contains(&c.tag_name().name()) {
+                        return Err(doc.err(
+                            c,
+                            format!("<{}> needs a 'name' attribute", c.tag_name().name()),
+                        ));
+                    }
+                    unnamed.push(c)
+                }
+            }
+        }
+        Ok(Props {
+            doc,
+            named,
+            used: RefCell::new(HashSet::new()),
+            unnamed,
+        })
+    }
+
+    /// The element of property `name`, marked as read.
+    pub fn get(&self, name: &str) -> Option<Node<'a, 'a>> {
+        let n = self.named.get(name).copied();
+        if n.is_some() {
+            self.used.borrow_mut().insert(name.to_string());
+        }
+        n
+    }
+
+    /// Marks properties as read that footprint accepts and ignores (they do not change the
+    /// expected image, e.g. an output file format).
+    pub fn ignore(&self, names: &[&str]) {
+        for n in names {
+            self.get(n);
+        }
+    }
+
+    fn value(&self, n: Node, tags: &[&str]) -> Result<String> {
+        let tag = n.tag_name().name();
+        if !tags.contains(&tag) {
+            return Err(self.doc.err(
+                n,
+                format!(
+                    "property '{}' is a <{tag}>, expected <{}>",
+                    n.attribute("name").unwrap_or(""),
+                    tags.join("> or <")
+                ),
+            ));
+        }
+        self.doc.req_attr(n, "value")
+    }
+
+    pub fn float(&self, name: &str) -> Result<Option<f32>> {
+        let Some(n) = self.get(name) else {
+            return Ok(None);
+        };
+        let v = self.value(n, &["float", "integer"])?;
+        v.trim()
+            .parse::<f32>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .map(Some)
+            .ok_or_else(|| {
+                self.doc
+                    .err(n, format!("'{name}': '{v}' is not a finite number"))
+            })
+    }
+
+    pub fn float_or(&self, name: &str, default: f32) -> Result<f32> {
+        Ok(self.float(name)?.unwrap_or(default))
+    }
+
+    pub fn integer(&self, name: &str) -> Result<Option<i64>> {
+        let Some(n) = self.get(name) else {
+            return Ok(None);
+        };
+        let v = self.value(n, &["integer"])?;
+        v.trim().parse::<i64>().map(Some).map_err(|_| {
+            self.doc
+                .err(n, format!("'{name}': '{v}' is not an integer"))
+        })
+    }
+
+    pub fn boolean(&self, name: &str) -> Result<Option<bool>> {
+        let Some(n) = self.get(name) else {
+            return Ok(None);
+        };
+        let v = self.value(n, &["boolean"])?;
+        match v.trim() {
+            "true" => Ok(Some(true)),
+            "false" => Ok(Some(false)),
+            _ => Err(self.doc.err(
+                n,
+                format!("'{name}': '{v}' is not a boolean (true or false)"),
+            )),
+        }
+    }
+
+    pub fn string(&self, name: &str) -> Result<Option<String>> {
+        let Some(n) = self.get(name) else {
+            return Ok(None);
+        };
+        self.value(n, &["string"]).map(Some)
+    }
+
+    /// A colour: `<rgb>`, a constant `<spectrum>` or a `<float>`. Returns the node too, for
+    /// errors about the value's range.
+    pub fn rgb(&self, name: &str) -> Result<Option<(Rgb, Node<'a, 'a>)>> {
+        let Some(n) = self.get(name) else {
+            return Ok(None);
+        };
+        let tag = n.tag_name().name();
+        if !["rgb", "spectrum", "float"].contains(&tag) {
+            return Ok(None);
+        }
+        let v = self.doc.req_attr(n, "value")?;
+        if tag == "spectrum" && v.contains(':') {
+            // Wavelength:value pairs: footprint renders in RGB.
+            let vals: Vec<f32> = v
+                .split(',')
+                .filter_map(|p| p.split(':').nth(1))
+                .filter_map(|x| x.trim().parse::<f32>().ok())
+                .collect();
+            let mean = vals.iter().sum::<f32>() / vals.len().max(1) as f32;
+            self.doc.unsupported(
+                n,
+                "a sampled <spectrum> (wavelength:value pairs)",
+                "<rgb> or a constant <spectrum value=\"v\">",
+                &format!("the grey of the values' mean, {mean}"),
+            )?;
+            return Ok(Some((Rgb::splat(mean), n)));
+        }
+        let c = match numbers(&v).as_deref() {
+            Some([x]) => Rgb::splat(*x),
+            Some([r, g, b]) => Rgb::new(*r, *g, *b),
+            _ => {
+                return Err(self.doc.err(
+                    n,
+                    format!("'{name}': '{v}' is not a colour (one value or three: \"r, g, b\")"),
+                ));
+            }
+        };
+        Ok(Some((c, n)))
+    }
+
+    /// True when property `name` exists and is not a plain colour (a texture or a `ref`).
+    pub fn is_texture(&self, name: &str) -> bool {
+        self.named
+            .get(name)
+            .is_some_and(|n| ["texture", "ref"].contains(&n.tag_name().name()))
+    }
+
+    /// A point or vector property: `x`, `y`, `z` attributes or a `value`.
+    pub fn vec3(&self, name: &str) -> Result<Option<Vec3>> {
+        let Some(n) = self.get(name) else {
+            return Ok(None);
+        };
+        let tag = n.tag_name().name();
+        if !["point", "vector"].contains(&tag) {
+            return Err(self.doc.err(
+                n,
+                format!("property '{name}' is a <{tag}>, expected <point> or <vector>"),
+            ));
+        }
+        vec3_attrs(self.doc, n, 0.0).map(Some)
+    }
+
+    /// A `<transform>` property.
+    pub fn transform(&self, name: &str) -> Result<Option<Mat4>> {
+        let Some(n) = self.get(name) else {
+            return Ok(None);
+        };
+        if n.tag_name().name() != "transform" {
+            return Err(self
+                .doc
+                .err(n, format!("property '{name}' must be a <transform>")));
+        }
+        parse_transform(self.doc, n).map(Some)
+    }
+
+    /// Errors (or, lenient, notes) for every property nobody read.
+    pub fn finish(&self, what: &str) -> Result<()> {
+        let used = self.used.borrow();
+        let mut left: Vec<(&String, &Node)> = self
+            .named
+            .iter()
+            .filter(|(k, _)| !used.contains(*k))
+            .collect();
+        left.sort_by_key(|(_, n)| n.range().start);
+        for (k, n) in left {
+            self.doc.unsupported(
+                *n,
+                &format!("property '{k}' of {what}"),
+                "the properties listed in docs/mitsuba.md",
+                "nothing (the property is ignored)",
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// `x`, `y`, `z` attributes (each defaulting to `default`), or a `value="x, y, z"`.
+pub fn vec3_attrs(doc: &Doc, n: Node, default: f32) -> Result<Vec3> {
+    if let Some(v) = doc.attr(n, "value")? {
+        return match numbers(&v).as_deref() {
+            Some([x, y, z]) => Ok(Vec3::new(*x, *y, *z)),
+            Some([s]) => Ok(Vec3::splat(*s)),
+            _ => Err(doc.err(n, format!("'{v}' is not three numbers \"x, y, z\""))),
+        };
+    }
+    let mut v = [default; 3];
+    for (i, a) in ["x", "y", "z"].iter().enumerate() {
+        if let Some(s) = doc.attr(n, a)? {
+            v[i] = s
+                .trim()
+                .parse::<f32>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| {
+                    doc.err(n, format!("attribute {a}=\"{s}\" is not a finite number"))
+                })?;
+        }
+    }
+    Ok(Vec3::from(v))
+}
+
+fn vec3_string(doc: &Doc, n: Node, attr: &str) -> Result<Option<Vec3>> {
+    let Some(s) = doc.attr(n, attr)? else {
+        return Ok(None);
+    };
+    match numbers(&s).as_deref() {
+        Some([x, y, z]) => Ok(Some(Vec3::new(*x, *y, *z))),
+        _ => Err(doc.err(
+            n,
+            format!("{attr}=\"{s}\" is not three numbers \"x, y, z\""),
+        )),
+    }
+}
+
+/// A `<transform>`: its operations applied in document order (each one after the ones
+/// before it, as Mitsuba composes them).
+pub fn parse_transform(doc: &Doc, node: Node) -> Result<Mat4> {
+    let mut m = Mat4::IDENTITY;
+    for op in doc.children(node) {
+        let t = match op.tag_name().name() {
+            "translate" => Mat4::from_translation(vec3_attrs(doc, op, 0.0)?),
+            "scale" => {
+                let s = vec3_attrs(doc, op, 1.0)?;
+                if s.abs().min_element() < 1e-12 {
+                    return Err(doc.err(op, "scale by zero"));
+                }
+                Mat4::from_scale(s)
+            }
+            "rotate" => {
+                let axis = vec3_attrs(doc, op, 0.0)?;
+                let angle: f32 = doc
+                    .req_attr(op, "angle")?
+                    .trim()
+                    .parse()
+                    .map_err(|_| doc.err(op, "rotate: 'angle' is not a number (degrees)"))?;
+                let axis = axis
+                    .try_normalize()
+                    .ok_or_else(|| doc.err(op, "rotate: the axis is zero"))?;
+                Mat4::from_axis_angle(axis, angle.to_radians())
+            }
+            "matrix" => {
+                let v = doc.req_attr(op, "value")?;
+                let a = numbers(&v).unwrap_or_default();
+                match a.len() {
+                    16 => Mat4::from_cols_array(&[
+                        a[0], a[4], a[8], a[12], a[1], a[5], a[9], a[13], a[2], a[6], a[10], a[14],
+                        a[3], a[7], a[11], a[15],
+                    ]),
+                    9 => Mat4::from_cols(
+                        Vec4::new(a[0], a[3], a[6], 0.0),
+                        Vec4::new(a[1], a[4], a[7], 0.0),
+                        Vec4::new(a[2], a[5], a[8], 0.0),
+                        Vec4::W,
+                    ),
+                    _ => {
+                        return Err(doc.err(
+                            op,
+                            "matrix needs 16 (4x4) or 9 (3x3) finite numbers, row by row",
+                        ));
+                    }
+                }
+            }
+            "lookat" => {
+                let origin = vec3_string(doc, op, "origin")?
+                    .ok_or_else(|| doc.err(op, "lookat needs 'origin'"))?;
+                let target = vec3_string(doc, op, "target")?
+                    .ok_or_else(|| doc.err(op, "lookat needs 'target'"))?;
+                let dir = (target - origin)
+                    .try_normalize()
+                    .ok_or_else(|| doc.err(op, "lookat: origin and target coincide"))?;
+                let up = match vec3_string(doc, op, "up")? {
+                    Some(u) => u,
+                    None => dir.any_orthonormal_vector(),
+                };
+                let left = up
+                    .cross(dir)
+                    .try_normalize()
+                    .ok_or_else(|| doc.err(op, "lookat: 'up' is parallel to the view direction"))?;
+                let new_up = dir.cross(left);
+                Mat4::from_cols(
+                    left.extend(0.0),
+                    new_up.extend(0.0),
+                    dir.extend(0.0),
+                    origin.extend(1.0),
+                )
+            }
+            other => {
+                return Err(doc.err(
+                    op,
+                    format!("unknown transform operation <{other}> (supported: translate, rotate, scale, matrix, lookat)"),
+                ));
+            }
+        };
+        m = t * m;
+    }
+    if !m.is_finite() || m.determinant().abs() < 1e-20 {
+        return Err(doc.err(node, "the transform is singular or not finite"));
+    }
+    Ok(m)
+}
