@@ -39,6 +39,7 @@ BUNDLED = {
     "cornell": dict(resx=48, resy=48, rfilter="tent", max_depth=8, batches=32, spp=128),
     "door": dict(resx=48, resy=32, rfilter="box", max_depth=8, batches=32, spp=512),
     "desk": dict(resx=48, resy=48, rfilter="gaussian", max_depth=12, batches=32, spp=256),
+    "features": dict(resx=64, resy=48, rfilter="tent", max_depth=6, batches=32, spp=256),
 }
 
 # The public scenes (../shared/scenes-ext): parameters of the check.
@@ -153,9 +154,15 @@ def cmd_references(args):
 
     mi = mitsuba()
     os.makedirs(REF_DIR, exist_ok=True)
-    meta = {"mitsuba": mi.__version__, "variant": "scalar_rgb", "scenes": {}}
-    for name, p in BUNDLED.items():
+    meta_path = os.path.join(REF_DIR, "references.json")
+    meta = json.load(open(meta_path)) if os.path.exists(meta_path) else {}
+    meta.update({"mitsuba": mi.__version__, "variant": "scalar_rgb"})
+    meta.setdefault("scenes", {})
+    only = set(args.only or BUNDLED)
+    for name, p in ((k, v) for k, v in BUNDLED.items() if k in only):
         xml = os.path.join(ROOT, "scenes", name, "mitsuba", "scene.xml")
+        if not os.path.exists(xml):
+            xml = os.path.join(ROOT, "scenes", name, "scene.xml")
         defines = {k: p[k] for k in ("resx", "resy", "rfilter", "max_depth")}
         imgs, secs = mitsuba_batches(xml, defines, p["batches"], p["spp"])
         mean = imgs.mean(axis=0).astype(np.float32)
@@ -184,7 +191,7 @@ def cmd_check(args):
             k, v = d.split("=", 1)
             defines[k] = v
         batches, spp = args.batches or p["batches"], args.spp or p["spp"]
-        a, ta = footprint_batches(xml, defines, batches, spp)
+        a, ta = footprint_batches(xml, defines, batches, spp, ["--integrator", args.integrator])
         b, tb = mitsuba_batches(xml, defines, batches, spp)
         r = compare(a, b, args.block)
         status = "PASS" if r["ok"] else "FAIL"
@@ -292,13 +299,15 @@ def cmd_compare(args):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest="cmd", required=True)
-    sub.add_parser("references", help="render the bundled scenes' references with Mitsuba")
+    r = sub.add_parser("references", help="render the bundled scenes' references with Mitsuba")
+    r.add_argument("only", nargs="*", help=f"scenes to render [default: all of {', '.join(BUNDLED)}]")
     c = sub.add_parser("check", help="compare both renderers on Mitsuba XML scenes")
     c.add_argument("scenes", nargs="*", help="XML scenes [default: ../shared/scenes-ext]")
     c.add_argument("-D", dest="define", action="append", default=[], help="name=value for both renderers")
     c.add_argument("--batches", type=int)
     c.add_argument("--spp", type=int, help="samples per pixel per batch")
     c.add_argument("--block", type=int, default=4, help="block side in pixels")
+    c.add_argument("--integrator", default="pt", help="footprint's integrator: pt, lt or combined")
     b = sub.add_parser("bench", help="time per sample against Mitsuba 3")
     b.add_argument("scenes", nargs="*")
     b.add_argument("--spp", type=int, default=64)

@@ -56,3 +56,118 @@ fn furnace_radiance_is_one_for_both_integrators() {
         }
     }
 }
+
+/// A convex Lambertian sphere (albedo 0.5) under a uniform environment of radiance `L`
+/// (Mitsuba's `constant` emitter): every point of a convex surface sees only the environment,
+/// so the sphere's radiance is exactly `0.5 L` (tessellated or not) and the background's is
+/// `L`. Every integrator, guided or not, must find both (the light tracer cannot see the
+/// environment directly, so only the sphere is checked for it).
+///
+/// Bound as above: per region and channel, the mean over `R` independent renders against
+/// the exact value, Student-t at 0.01 Šidák-corrected over all tests, times the standard
+/// error from the renders' spread.
+#[test]
+fn uniform_environment_lights_a_convex_sphere_exactly() {
+    use footprint_integrators::Guide;
+    let dir = std::env::temp_dir().join(format!("footprint-env-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let xml = dir.join("scene.xml");
+    std::fs::write(
+        &xml,
+        r#"<scene version="3.0.0">
+  <integrator type="path"><integer name="max_depth" value="6"/></integrator>
+  <sensor type="perspective"><float name="fov" value="30"/>
+    <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/><rfilter type="box"/></film>
+  </sensor>
+  <emitter type="constant"><rgb name="radiance" value="1, 0.5, 0.25"/></emitter>
+  <shape type="sphere"><float name="radius" value="1"/>
+    <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf></bsdf></shape>
+</scene>"#,
+    )
+    .unwrap();
+    let mut scene = footprint::mitsuba::load(&xml, &Default::default()).unwrap();
+    assert!(scene.effects.environment);
+    // Enough photons that the sphere's queries find k_p = 50 and guiding happens.
+    scene.maps.photons = 400_000;
+    scene.maps.importons = 50_000;
+    let l = [1.0f64, 0.5, 0.25];
+    let configs = [
+        (Integrator::Pt, Guide::Bsdf),
+        (Integrator::Lt, Guide::Bsdf),
+        (Integrator::Combined, Guide::Bsdf),
+        (Integrator::Pt, Guide::Footprint),
+        (Integrator::Combined, Guide::Footprint),
+    ];
+    let renders = 16;
+    let crit = t_critical(sidak(0.01, configs.len() * 6), (renders - 1) as f64);
+    // Sphere: the central 4x4 pixels; background: the four 2x2 corners.
+    let sphere = |x: u32, y: u32| (6..10).contains(&x) && (6..10).contains(&y);
+    let background = |x: u32, y: u32| (x < 2 || x >= 14) && (y < 2 || y >= 14);
+    for (integrator, guide) in configs {
+        let mut samples = vec![
+            [Vec::new(), Vec::new(), Vec::new()],
+            [Vec::new(), Vec::new(), Vec::new()],
+        ];
+        for r in 0..renders {
+            let opts = RenderOptions {
+                integrator,
+                guide,
+                spp: 16,
+                time: None,
+                max_depth: 6,
+                seed: 500 + r as u64,
+                progress: false,
+                ..Default::default()
+            };
+            let out = render(&scene, &opts, |_| {});
+            assert!(out.image.all_valid() && out.stats.rejected == 0);
+            if guide == Guide::Footprint {
+                let g = &out.camera_guide;
+                assert!(
+                    g.prepared > 0 && g.fallbacks * 2 < g.prepared,
+                    "{integrator:?}: guided at {} of {} vertices",
+                    g.prepared - g.fallbacks,
+                    g.prepared
+                );
+            }
+            for (k, region) in [&sphere as &dyn Fn(u32, u32) -> bool, &background]
+                .iter()
+                .enumerate()
+            {
+                let mut sum = [0.0f64; 3];
+                let mut n = 0.0;
+                for y in 0..16 {
+                    for x in 0..16 {
+                        if region(x, y) {
+                            let c = out.image.get(x, y);
+                            sum[0] += c.x as f64;
+                            sum[1] += c.y as f64;
+                            sum[2] += c.z as f64;
+                            n += 1.0;
+                        }
+                    }
+                }
+                for c in 0..3 {
+                    samples[k][c].push(sum[c] / n);
+                }
+            }
+        }
+        for (k, (name, factor)) in [("sphere", 0.5), ("background", 1.0)].iter().enumerate() {
+            if k == 1 && integrator == Integrator::Lt {
+                continue;
+            }
+            for c in 0..3 {
+                let (mean, se) = mean_stderr(&samples[k][c]);
+                let want = factor * l[c];
+                eprintln!(
+                    "{integrator:?}/{guide:?} {name} channel {c}: {mean:.5} ± {se:.5}, exact {want}"
+                );
+                assert!(
+                    (mean - want).abs() <= crit * se + 1e-6,
+                    "{integrator:?}/{guide:?} {name} channel {c}: {mean} ± {se}, exact {want}"
+                );
+            }
+        }
+    }
+}

@@ -66,11 +66,23 @@ pub fn trace(
     let Some(em) = light.sample_le(rng.uniform2(), rng.uniform2()) else {
         return;
     };
+    // Paths from the environment stay out of the combined image: the path tracer alone
+    // makes them there (its own two-strategy weights sum to one for them), so that the
+    // weights remain a partition of unity without an area density at infinity.
+    let environment = light.is_environment();
+    let splats = &mut Splats {
+        combined: if environment {
+            None
+        } else {
+            splats.combined.as_deref_mut()
+        },
+        lt: &mut *splats.lt,
+    };
     let combined = splats.combined.is_some();
     let p_l = light_pos_pdf(scene, li as u32);
 
-    // ---- The light vertex seen directly by the camera ----
-    if let Some(conn) = cam.connect(em.p) {
+    // ---- The light vertex seen directly by the camera (not the environment's disk) ----
+    if let Some(conn) = cam.connect(em.p).filter(|_| !environment) {
         let cos_l = em.n.map(|n| n.dot(conn.dir_to_camera)).unwrap_or(1.0);
         if cos_l > 0.0 {
             let le = light.emitted(conn.dir_to_camera);

@@ -10,6 +10,10 @@
 //! [`crate::mis`]: its light hits and next-event connections are weighted against the light
 //! tracer's camera connections.
 //!
+//! A uniform environment (Mitsuba's `constant`) is seen by rays that escape, weighted by MIS
+//! against its next-event samples; in the combined image those paths come from the path
+//! tracer alone.
+//!
 //! Path length: `max_depth` counts segments, the first being the camera ray. Emission seen
 //! at hit `n` closes a path of `n` segments; a next-event connection at hit `n`, `n + 1`.
 
@@ -125,6 +129,22 @@ pub fn trace(
 
     for depth in 1..=max_depth {
         let Some(hit) = scene.intersect(origin, dir, f32::INFINITY) else {
+            // ---- The environment seen by an escaping ray ----
+            if let Some((ei, env)) = scene.environment() {
+                let le = env.emitted(dir);
+                let w = if prev_delta {
+                    1.0
+                } else {
+                    let pdf_light = scene.light_pmf(ei) * env.pdf_li(prev_p, prev_p + dir);
+                    power_heuristic(prev_pdf_w, pdf_light)
+                };
+                out.pt += beta * le * w;
+                // The combined image takes environment paths from the path tracer alone
+                // (see `light_tracer`): the same two-strategy weights.
+                if combined {
+                    out.combined += beta * le * w;
+                }
+            }
             break;
         };
         let wo = -dir;
@@ -237,7 +257,10 @@ pub fn trace(
                         out.pt +=
                             contrib * power_heuristic(pdf_light, sampler.pdf(&at, state, ls.wi));
                     }
-                    if combined {
+                    if combined && light.is_environment() {
+                        let pdf_bsdf = sampler.pdf(&at, state, ls.wi);
+                        out.combined += contrib * power_heuristic(ls.pdf_w * pmf, pdf_bsdf);
+                    } else if combined {
                         let p_l = light_pos_pdf(scene, li as u32);
                         let fwd_l = if ls.delta {
                             0.0

@@ -768,6 +768,7 @@ impl<'a, 'd> Builder<'a, 'd> {
                         "white reflectance and the constant factor",
                     )?;
                 }
+                m.ks = sr;
                 if kind == "dielectric" {
                     m.kind = MaterialKind::Glass;
                     // `tf` is the transmittance of a passage in and out: two interfaces.
