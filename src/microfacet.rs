@@ -305,9 +305,10 @@ fn beckmann_visible_slopes(cos_i: f64, u: Vec2) -> (f64, f64) {
         if !(next > lo && next < hi) {
             next = 0.5 * (lo + hi);
         }
-        let done = (next - x).abs() < 1e-13;
+        // erf above is accurate to ~1e-7: finer steps only chase its rounding.
+        let done = (next - x).abs() < 1e-9;
         x = next;
-        if done || hi - lo < 1e-15 {
+        if done || hi - lo < 1e-12 {
             break;
         }
     }
