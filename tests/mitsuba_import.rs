@@ -270,6 +270,12 @@ fn errors_name_the_element_line_and_what_is_supported() {
         "<shape type=\"sphere\"><float name=\"radius\" value=\"big\"/></shape>",
     );
     assert!(e.contains("'big' is not a finite number"), "{e}");
+    // A BSDF that contains itself.
+    let e = load_err(
+        "cycle",
+        "<bsdf type=\"twosided\" id=\"a\"><ref id=\"a\"/></bsdf><shape type=\"cube\"><ref id=\"a\"/></shape>",
+    );
+    assert!(e.contains("cycle"), "{e}");
     // XML syntax: line and column from the parser.
     let d = dir_with(
         "syntax",

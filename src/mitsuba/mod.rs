@@ -188,6 +188,8 @@ struct Builder<'a, 'd> {
     texture_of: HashMap<NodeId, u32>,
     /// Index of each distinct material already in `materials`, by its debug text.
     material_index: HashMap<String, u32>,
+    /// BSDF elements being built (a reference cycle is an error, not a stack overflow).
+    building: Vec<NodeId>,
 }
 
 impl<'a, 'd> Builder<'a, 'd> {
@@ -224,6 +226,7 @@ impl<'a, 'd> Builder<'a, 'd> {
             material_of: HashMap::new(),
             texture_of: HashMap::new(),
             material_index: HashMap::new(),
+            building: Vec::new(),
         })
     }
 
@@ -707,6 +710,18 @@ impl<'a, 'd> Builder<'a, 'd> {
         if let Some(m) = self.material_of.get(&node.id()) {
             return Ok(m.clone());
         }
+        if self.building.contains(&node.id()) {
+            return Err(self
+                .doc
+                .err(node, "this BSDF contains itself (a cycle of references)"));
+        }
+        self.building.push(node.id());
+        let m = self.build_bsdf(node);
+        self.building.pop();
+        m
+    }
+
+    fn build_bsdf(&mut self, node: Node<'a, 'a>) -> Result<Material> {
         let kind = self.kind(node)?;
         let p = Props::new(self.doc, node)?;
         let name = node
