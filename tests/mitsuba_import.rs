@@ -96,9 +96,12 @@ fn sensor_film_parameters_and_defines() {
             .atan()
             .to_degrees();
     assert!((s.camera.fov_y_deg - want).abs() < 1e-3);
-    // -D of a parameter the scene does not have is an error.
+    // -D of a parameter the scene does not have is an error (whole names: `$resx` is not
+    // `$res`).
     let e = load(&d, &[("nope", "1")], false).err().unwrap().to_string();
     assert!(e.contains("nope"), "{e}");
+    let e = load(&d, &[("res", "8")], false).err().unwrap().to_string();
+    assert!(e.contains("'$res'"), "{e}");
 }
 
 #[test]
@@ -182,6 +185,46 @@ fn shapes_transforms_and_area_lights() {
         sphere_area < pi && sphere_area > pi * 0.999,
         "sphere area {sphere_area}"
     );
+}
+
+/// Nested objects may carry a `name` (`<ref name="bsdf" id="m"/>`, `<rfilter name="rfilter">`),
+/// and a mirroring transform does not turn Mitsuba's rectangle around (its front follows the
+/// transformed normal, not the winding).
+#[test]
+fn named_objects_and_mirrored_primitives() {
+    let body = r#"<bsdf type="twosided" id="m"><bsdf type="diffuse" name="bsdf"><rgb name="reflectance" value="0.3"/></bsdf></bsdf>
+  <shape type="cube"><ref name="bsdf" id="m"/></shape>
+  <shape type="rectangle" id="mirror_x">
+    <transform name="to_world"><scale x="-1"/><translate z="-4"/></transform>
+    <emitter type="area" name="emitter"><rgb name="radiance" value="5"/></emitter></shape>
+  <shape type="rectangle" id="mirror_z">
+    <transform name="to_world"><scale z="-1"/><translate z="-6"/></transform>
+    <emitter type="area"><rgb name="radiance" value="7"/></emitter></shape>"#;
+    let xml = scene_xml(body).replace(
+        "<rfilter type=\"tent\"/>",
+        "<rfilter type=\"box\" name=\"rfilter\"/>",
+    );
+    let d = dir_with("named", &[("scene.xml", &xml)]);
+    let s = load(&d, &[], false).unwrap();
+    assert_eq!(s.camera.filter.kind, FilterKind::Box);
+    assert!(
+        s.materials
+            .iter()
+            .any(|m| m.kd == footprint::Rgb::splat(0.3) && m.two_sided),
+        "the referenced BSDF is used"
+    );
+    for (le, want) in [(5.0, Vec3::Z), (7.0, Vec3::NEG_Z)] {
+        for l in &s.lights {
+            if let Light::Area { n, le: e, .. } = l {
+                if e.x == le {
+                    assert!(
+                        (*n - want).length() < 1e-5,
+                        "radiance {le}: normal {n:?}, want {want:?}"
+                    );
+                }
+            }
+        }
+    }
 }
 
 #[test]

@@ -66,10 +66,16 @@ pub fn export(scene: &Scene, source: &Path, out: &Path) -> Result<ExportNotes> {
         "  <!-- Written by `footprint export` from {}. Mitsuba's OBJ loader ignores .mtl files:\n       one OBJ per material, world space. -->",
         source.display()
     );
-    let filter = match cam.filter.kind {
-        crate::filter::FilterKind::Box => "box",
-        crate::filter::FilterKind::Tent { .. } => "tent",
-        crate::filter::FilterKind::Gaussian { .. } => "gaussian",
+    let (filter, filter_param) = match cam.filter.kind {
+        crate::filter::FilterKind::Box => ("box", String::new()),
+        crate::filter::FilterKind::Tent { radius } => (
+            "tent",
+            format!("<float name=\"radius\" value=\"{radius:?}\"/>"),
+        ),
+        crate::filter::FilterKind::Gaussian { stddev } => (
+            "gaussian",
+            format!("<float name=\"stddev\" value=\"{stddev:?}\"/>"),
+        ),
     };
     for (k, v) in [
         ("spp", s.spp.to_string()),
@@ -108,9 +114,16 @@ pub fn export(scene: &Scene, source: &Path, out: &Path) -> Result<ExportNotes> {
         x,
         "    <sampler type=\"independent\"><integer name=\"sample_count\" value=\"$spp\"/></sampler>"
     );
+    // The filter's parameter is written only when it is not the default (a -D rfilter of
+    // another type must not inherit it).
+    let filter_param = match cam.filter.kind {
+        crate::filter::FilterKind::Tent { radius } if radius != 1.0 => filter_param,
+        crate::filter::FilterKind::Gaussian { stddev } if stddev != 0.5 => filter_param,
+        _ => String::new(),
+    };
     let _ = writeln!(
         x,
-        "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"$resx\"/><integer name=\"height\" value=\"$resy\"/><rfilter type=\"$rfilter\"/></film>"
+        "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"$resx\"/><integer name=\"height\" value=\"$resy\"/><rfilter type=\"$rfilter\">{filter_param}</rfilter></film>"
     );
     let _ = writeln!(x, "  </sensor>");
 

@@ -114,7 +114,13 @@ pub fn load(path: &Path, opts: &ImportOptions) -> Result<Scene> {
         doc.params.insert(name.to_string(), value.to_string());
     }
     for (k, v) in &opts.defines {
-        if !text.contains(&format!("${k}")) {
+        let used = text.match_indices(&format!("${k}")).any(|(i, m)| {
+            !text[i + m.len()..]
+                .chars()
+                .next()
+                .is_some_and(|c| c.is_ascii_alphanumeric() || c == '_')
+        });
+        if !used {
             return Err(Error::invalid(
                 path,
                 format!("-D {k}={v}: the scene has no parameter '${k}'"),
@@ -148,6 +154,12 @@ pub fn load(path: &Path, opts: &ImportOptions) -> Result<Scene> {
         .camera
         .take()
         .ok_or_else(|| Error::invalid(path, "the scene has no <sensor>"))?;
+    if b.settings.integrator == "lt" && b.lights.iter().any(|l| l.is_environment()) {
+        doc.notes.borrow_mut().push(format!(
+            "{}: ptracer with a constant emitter: footprint's light tracer does not see the environment directly (the background stays black); --integrator pt or combined show it",
+            path.display()
+        ));
+    }
     b.stats.triangles = b.triangles.len();
     let notes = doc.notes.take();
     let mut scene = Scene::new(
@@ -381,7 +393,6 @@ impl<'a, 'd> Builder<'a, 'd> {
                         "banner",
                         "compensate",
                         "sample_border",
-                        "rfilter",
                     ]);
                     fp.finish("the film")?;
                     for rf in fp.unnamed.iter().filter(|n| n.has_tag_name("rfilter")) {
@@ -442,7 +453,10 @@ impl<'a, 'd> Builder<'a, 'd> {
         let (Some(forward), Some(up), Some(left)) = (forward, up, left) else {
             return Err(self.doc.err(node, "the sensor's to_world has a zero axis"));
         };
-        if forward.dot(up).abs() > 1e-3 || forward.dot(left).abs() > 1e-3 {
+        if forward.dot(up).abs() > 1e-3
+            || forward.dot(left).abs() > 1e-3
+            || up.dot(left).abs() > 1e-3
+        {
             return Err(self.doc.err(
                 node,
                 "the sensor's to_world is not a rotation (its axes are not perpendicular)",
@@ -685,9 +699,10 @@ impl<'a, 'd> Builder<'a, 'd> {
         let eta = p.rgb("eta")?.map(|c| c.0);
         let k = p.rgb("k")?.map(|c| c.0);
         let material = p.string("material")?;
-        p.ignore(&["ext_eta"]);
+        // Mitsuba's eta and k are relative to the exterior's index.
+        let ext = self.ior(p, "ext_eta", 1.0)?;
         match (eta, k, material.as_deref()) {
-            (Some(e), Some(k), None) => Ok((e, k)),
+            (Some(e), Some(k), None) => Ok((e / ext, k / ext)),
             // Mitsuba's default, a perfect mirror: the Fresnel factor is 1.
             (None, None, None | Some("none")) => Ok((Rgb::ZERO, Rgb::ZERO)),
             (None, None, Some(m)) => {
@@ -890,7 +905,7 @@ impl<'a, 'd> Builder<'a, 'd> {
                 to_world = to_world
                     * Mat4::from_translation(center)
                     * Mat4::from_scale(Vec3::splat(radius));
-                shapes::sphere(96, 192)
+                shapes::sphere(64, 128)
             }
             other => {
                 return self.doc.unsupported(
@@ -961,12 +976,25 @@ impl<'a, 'd> Builder<'a, 'd> {
             }
         }
         let material = self.material_id(m);
-        self.push_mesh(&mesh, to_world, material, face_normals, flip_normals);
+        // Mitsuba's rectangle and sphere take their front from the transformed normal (the
+        // inverse transpose), not from the winding, which a mirroring transform reverses.
+        let primitive = matches!(kind.as_str(), "rectangle" | "sphere");
+        let mirrored = primitive && Mat3::from_mat4(to_world).determinant() < 0.0;
+        self.push_mesh(
+            &mesh,
+            to_world,
+            material,
+            face_normals,
+            flip_normals,
+            mirrored,
+        );
         self.stats.meshes += 1;
         mesh.indices.clear();
         Ok(())
     }
 
+    /// Adds a mesh's triangles; `flip` (flip_normals) turns normals and winding around,
+    /// `rewind` reverses the winding only (a mirrored primitive).
     fn push_mesh(
         &mut self,
         mesh: &MeshData,
@@ -974,6 +1002,7 @@ impl<'a, 'd> Builder<'a, 'd> {
         material: u32,
         face_normals: bool,
         flip: bool,
+        rewind: bool,
     ) {
         let normal_matrix = Mat3::from_mat4(to_world).inverse().transpose();
         let pos: Vec<Vec3> = mesh
@@ -995,7 +1024,7 @@ impl<'a, 'd> Builder<'a, 'd> {
         };
         for f in &mesh.indices {
             let [i0, i1, i2] = f.map(|i| i as usize);
-            let (i0, i2) = if flip { (i2, i0) } else { (i0, i2) };
+            let (i0, i2) = if flip != rewind { (i2, i0) } else { (i0, i2) };
             let geom = TriangleGeom::new(pos[i0], pos[i1], pos[i2]);
             if crate::loader::is_degenerate(&geom) {
                 self.stats.degenerate_skipped += 1;

@@ -25,6 +25,11 @@ const PROPERTY_TAGS: &[&str] = &[
     "transform",
 ];
 
+/// Names under which a `<ref>` points to a nested object rather than a texture.
+const OBJECT_NAMES: &[&str] = &[
+    "bsdf", "emitter", "film", "sampler", "rfilter", "shape", "medium",
+];
+
 /// What the importer needs while walking the document.
 pub struct Doc<'a> {
     pub path: &'a Path,
@@ -152,7 +157,7 @@ pub struct Props<'a, 'd> {
     doc: &'d Doc<'a>,
     named: HashMap<String, Node<'a, 'a>>,
     used: RefCell<HashSet<String>>,
-    /// Nested objects without a `name` (a shape's bsdf, emitter, a `ref`).
+    /// Nested objects, named or not (a shape's bsdf and emitter, a sensor's film, `ref`s).
     pub unnamed: Vec<Node<'a, 'a>>,
 }
 
@@ -160,28 +165,38 @@ impl<'a, 'd> Props<'a, 'd> {
     pub fn new(doc: &'d Doc<'a>, node: Node<'a, 'a>) -> Result<Self> {
         let mut named = HashMap::new();
         let mut unnamed = Vec::new();
+        let mut used = HashSet::new();
         for c in doc.children(node) {
-            match doc.attr(c, "name")? {
-                Some(n) => {
+            let tag = c.tag_name().name();
+            let name = doc.attr(c, "name")?;
+            // Nested objects (bsdf, emitter, film, sampler, rfilter, ...) are objects whatever
+            // their `name`; a named `ref` may be a texture property or an object (`<ref
+            // name="bsdf" id="m"/>`): it is both, and counts as read when used as either.
+            let property = PROPERTY_TAGS.contains(&tag) || tag == "texture" || tag == "ref";
+            let object = !PROPERTY_TAGS.contains(&tag) && !(tag == "texture" && name.is_some());
+            match name {
+                Some(n) if property => {
                     if named.insert(n.clone(), c).is_some() {
                         return Err(doc.err(c, format!("property '{n}' is given twice")));
                     }
-                }
-                None => {
-                    if PROPERTY_TAGS.contains(&c.tag_name().name()) {
-                        return Err(doc.err(
-                            c,
-                            format!("<{}> needs a 'name' attribute", c.tag_name().name()),
-                        ));
+                    if tag == "ref" && OBJECT_NAMES.contains(&n.as_str()) {
+                        used.insert(n);
                     }
-                    unnamed.push(c)
                 }
+                Some(_) => {}
+                None if PROPERTY_TAGS.contains(&tag) => {
+                    return Err(doc.err(c, format!("<{tag}> needs a 'name' attribute")));
+                }
+                None => {}
+            }
+            if object {
+                unnamed.push(c);
             }
         }
         Ok(Props {
             doc,
             named,
-            used: RefCell::new(HashSet::new()),
+            used: RefCell::new(used),
             unnamed,
         })
     }
