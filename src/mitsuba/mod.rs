@@ -703,6 +703,8 @@ impl<'a, 'd> Builder<'a, 'd> {
         let ext = self.ior(p, "ext_eta", 1.0)?;
         match (eta, k, material.as_deref()) {
             (Some(e), Some(k), None) => Ok((e / ext, k / ext)),
+            // Mitsuba: `k` defaults to 1 when `eta` is given.
+            (Some(e), None, None) => Ok((e / ext, Rgb::ONE / ext)),
             // Mitsuba's default, a perfect mirror: the Fresnel factor is 1.
             (None, None, None | Some("none")) => Ok((Rgb::ZERO, Rgb::ZERO)),
             (None, None, Some(m)) => {
@@ -714,9 +716,10 @@ impl<'a, 'd> Builder<'a, 'd> {
                 )?;
                 Ok((Rgb::ZERO, Rgb::ZERO))
             }
-            _ => Err(self
-                .doc
-                .err(node, "give both 'eta' and 'k', or a 'material'")),
+            _ => Err(self.doc.err(
+                node,
+                "give 'eta' (and 'k', default 1) or a 'material', not both",
+            )),
         }
     }
 
