@@ -26,8 +26,10 @@ fn heap_bytes() -> Option<usize> {
     name = "footprint",
     version,
     about = "A physically based CPU renderer that guides light and view paths with particle maps",
-    long_about = "footprint renders scenes described in TOML (see README.md, \"Scene format\") with \
-                  path tracing or light tracing.\n\nExample:\n  footprint render scenes/door/door.toml --spp 64"
+    long_about = "footprint renders scenes described in TOML (see README.md, \"Scene format\") or \
+                  Mitsuba 3 XML (docs/mitsuba.md) with path tracing, light tracing or both, guided \
+                  by particle maps.\n\nExamples:\n  footprint render scenes/door/door.toml --spp 64\n  \
+                  footprint render scene.xml -D resx=128 -D resy=72"
 )]
 struct Cli {
     #[command(subcommand)]
