@@ -273,6 +273,41 @@ fn materials_references_and_textures() {
     assert_eq!(at(0.3, 0.8), 0.1);
 }
 
+/// An OBJ without texture coordinates: Mitsuba's uv is the face's barycentrics `(b1, b2)`
+/// (checked with Mitsuba 3.9.1: the triangle (0,0,0), (1,0,0), (0,1,0) hit at (0.2, 0.3) has
+/// uv (0.2, 0.3)), which a checkerboard then sees; also with flip_normals.
+#[test]
+fn meshes_without_uvs_use_mitsubas_barycentrics() {
+    for flip in ["false", "true"] {
+        let body = format!(
+            r#"<shape type="obj"><string name="filename" value="tri.obj"/><boolean name="flip_normals" value="{flip}"/>
+    <bsdf type="twosided"><bsdf type="diffuse"><texture name="reflectance" type="checkerboard">
+      <rgb name="color0" value="0.9"/><rgb name="color1" value="0.1"/></texture></bsdf></bsdf></shape>"#
+        );
+        let d = dir_with(
+            &format!("nouv{flip}"),
+            &[
+                ("scene.xml", &scene_xml(&body)),
+                ("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+            ],
+        );
+        let s = load(&d, &[], false).unwrap();
+        // Hit points (x, y) on the triangle: uv = (x, y); colour0 where both coordinates are on
+        // the same side of 1/2.
+        for (x, y, want) in [(0.2f32, 0.3f32, 0.9f32), (0.6, 0.3, 0.1), (0.2, 0.6, 0.1)] {
+            let hit = s
+                .intersect(Vec3::new(x, y, 1.0), Vec3::NEG_Z, 10.0)
+                .expect("the triangle is hit");
+            let m = &s.materials[hit.material as usize];
+            let kd = m.kd * s.textures[m.kd_texture.unwrap() as usize].lookup(hit.uv);
+            assert!(
+                (kd.x - want).abs() < 1e-6,
+                "flip {flip}: ({x}, {y}) -> {kd:?}, want {want}"
+            );
+        }
+    }
+}
+
 #[test]
 fn errors_name_the_element_line_and_what_is_supported() {
     // Unknown BSDF type: line of the element, the supported list, the --lenient hint.

@@ -1039,11 +1039,30 @@ impl<'a, 'd> Builder<'a, 'd> {
                     .all(|v| v.is_finite() && *v != Vec3::ZERO)
                     .then_some(t)
             });
-            let tri_uvs: Option<[Vec2; 3]> = mesh.uvs.as_ref().map(|u| [u[i0], u[i1], u[i2]]);
+            // Without texture coordinates Mitsuba uses the barycentrics (b1, b2) of the face as
+            // written: its vertices at (0, 0), (1, 0), (0, 1), stored here OBJ-style (v up).
+            let swapped = flip != rewind;
+            let tri_uvs: [Vec2; 3] = match &mesh.uvs {
+                Some(u) => [u[i0], u[i1], u[i2]],
+                None => {
+                    let b = |k: usize| {
+                        [
+                            Vec2::new(0.0, 1.0),
+                            Vec2::new(1.0, 1.0),
+                            Vec2::new(0.0, 0.0),
+                        ][k]
+                    };
+                    if swapped {
+                        [b(2), b(1), b(0)]
+                    } else {
+                        [b(0), b(1), b(2)]
+                    }
+                }
+            };
             self.triangles.push(geom);
             self.shading.push(TriangleShading {
                 normals: tri_normals,
-                uvs: tri_uvs,
+                uvs: Some(tri_uvs),
                 material,
                 light: None,
             });
