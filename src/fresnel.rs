@@ -27,11 +27,6 @@ pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
 /// Fresnel reflectance of a conductor of relative complex index `eta + i k` for unpolarised
 /// light arriving from outside at `cos_i` (clamped to [0, 1]); one channel.
 pub fn fresnel_conductor_1(cos_i: f32, eta: f32, k: f32) -> f32 {
-    if eta == 0.0 && k == 0.0 {
-        // Mitsuba's `material="none"`: a perfect mirror (the limit of the formula, which is
-        // 0/0 at normal incidence).
-        return 1.0;
-    }
     let c = cos_i.clamp(0.0, 1.0);
     let c2 = c * c;
     let s2 = 1.0 - c2;

@@ -476,18 +476,4 @@ impl Light {
         }
         cos_outer + t * (cos_inner - cos_outer)
     }
-
-    /// Position and, for area lights, a sampled point's positional density: used when a
-    /// light vertex is connected straight to the camera.
-    pub fn sample_position(&self, u_pos: Vec2) -> (Vec3, Option<Vec3>, f32) {
-        match self {
-            Light::Area { geom, n, area, .. } => {
-                let (b1, b2) = sample_uniform_triangle(u_pos);
-                (geom.point(b1, b2), Some(*n), 1.0 / *area)
-            }
-            Light::Point { position, .. } | Light::Spot { position, .. } => (*position, None, 1.0),
-            // At infinity: no position (callers skip the environment).
-            Light::Environment { center, .. } => (*center, None, 0.0),
-        }
-    }
 }

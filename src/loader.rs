@@ -516,7 +516,25 @@ pub(crate) fn is_degenerate(geom: &TriangleGeom) -> bool {
     !(len.is_finite() && len > 0.0 && len > 1e-10 * longest * longest)
 }
 
-pub(crate) fn find_bad_vertex(text: &str) -> Option<(usize, String)> {
+/// An OBJ file's text, checked for vertex coordinates that are not finite numbers (which
+/// tobj would read as NaN).
+pub(crate) fn read_obj_text(obj_path: &Path) -> Result<String> {
+    let text = std::fs::read_to_string(obj_path).map_err(|source| Error::Io {
+        path: obj_path.to_path_buf(),
+        source,
+    })?;
+    if let Some((line, tok)) = find_bad_vertex(&text) {
+        return Err(Error::Syntax {
+            path: obj_path.to_path_buf(),
+            line,
+            column: 1,
+            message: format!("vertex coordinate '{tok}' is not a finite number"),
+        });
+    }
+    Ok(text)
+}
+
+fn find_bad_vertex(text: &str) -> Option<(usize, String)> {
     for (i, line) in text.lines().enumerate() {
         let l = line.trim_start();
         if let Some(rest) = l.strip_prefix("v ").or_else(|| l.strip_prefix("v\t")) {
@@ -543,18 +561,7 @@ fn load_obj(
     texture_ids: &mut HashMap<PathBuf, u32>,
     stats: &mut LoadStats,
 ) -> Result<()> {
-    let text = std::fs::read_to_string(obj_path).map_err(|source| Error::Io {
-        path: obj_path.to_path_buf(),
-        source,
-    })?;
-    if let Some((line, tok)) = find_bad_vertex(&text) {
-        return Err(Error::Syntax {
-            path: obj_path.to_path_buf(),
-            line,
-            column: 1,
-            message: format!("vertex coordinate '{tok}' is not a finite number"),
-        });
-    }
+    let text = read_obj_text(obj_path)?;
     let obj_dir = obj_path.parent().unwrap_or(Path::new(".")).to_path_buf();
     let mtl_error: RefCell<Option<Error>> = RefCell::new(None);
     let opts = tobj::LoadOptions {

@@ -200,7 +200,8 @@ impl Material {
 
     /// The material ready for rendering: a RoughPlastic gets its coating's tables (computed
     /// once per distinct `(microfacet, alpha, ni)`, a fraction of a second, then cached).
-    /// Loaders call it on every material after `sanitized`.
+    /// `Scene::new` calls it on every material; a material built by hand for a BSDF alone
+    /// (tests) calls it itself.
     pub fn prepared(mut self) -> Self {
         self.rough_plastic = match self.kind {
             MaterialKind::RoughPlastic => Some(RoughPlasticTables::get(

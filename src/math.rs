@@ -27,6 +27,16 @@ pub fn is_black(c: Rgb) -> bool {
     c.max_element() <= 0.0
 }
 
+/// The six signed coordinate axes: +x, -x, +y, -y, +z, -z.
+pub const SIGNED_AXES: [Vec3; 6] = [
+    Vec3::X,
+    Vec3::NEG_X,
+    Vec3::Y,
+    Vec3::NEG_Y,
+    Vec3::Z,
+    Vec3::NEG_Z,
+];
+
 /// An orthonormal frame; `z` is the normal. Converts between world and local directions.
 #[derive(Clone, Copy, Debug)]
 pub struct Frame {

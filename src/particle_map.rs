@@ -115,14 +115,7 @@ struct DensityGrid {
 }
 
 /// The axis of each normal bucket.
-const BUCKET_AXES: [Vec3; 6] = [
-    Vec3::X,
-    Vec3::NEG_X,
-    Vec3::Y,
-    Vec3::NEG_Y,
-    Vec3::Z,
-    Vec3::NEG_Z,
-];
+const BUCKET_AXES: [Vec3; 6] = crate::math::SIGNED_AXES;
 
 impl DensityGrid {
     fn build(particles: &[(Vec3, Vec3)], lo: Vec3, hi: Vec3) -> Self {

@@ -155,6 +155,8 @@ impl Scene {
             return Err("the scene has no geometry (no valid triangles)".into());
         }
         assert_eq!(triangles.len(), shading.len());
+        // Derived per-material data (rough plastic tables) is made here, once, for every loader.
+        let materials: Vec<Material> = materials.into_iter().map(Material::prepared).collect();
         let mut shading = shading;
         // Area lights from emissive materials, one per triangle.
         for (i, (t, s)) in triangles.iter().zip(shading.iter_mut()).enumerate() {

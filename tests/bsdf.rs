@@ -1018,6 +1018,14 @@ fn conductor_fresnel_values() {
             .max_element()
             < 1e-6
     );
+    // Mitsuba's `material="none"` is η = 0, k = 1: |r_s| = |r_p| = 1 at every angle.
+    for cos in [1.0f32, 0.7, 0.2, 0.0] {
+        let f = fresnel_conductor(cos, Rgb::ZERO, Rgb::ONE);
+        assert!(
+            (f - Rgb::ONE).abs().max_element() < 1e-6,
+            "cos {cos}: {f:?}"
+        );
+    }
     // k = 0 is a dielectric (η > 1: from outside).
     for eta in [1.2f32, 1.5, 2.4] {
         for cos in [1.0f32, 0.8, 0.5, 0.2, 0.05, 0.0] {

@@ -147,12 +147,15 @@ pub fn reference_key(scene_path: &Path, scene: &Scene, spp: u32, max_depth: u32)
         .with_context(|| format!("cannot read {}", scene_path.display()))?;
     eat(&text);
     // Every file the scene names (meshes, their materials, textures), by content: any quoted
-    // string that is a file beside the scene, in TOML (`file = "x.obj"`) as in Mitsuba XML
-    // (`value="models/x.obj"`).
+    // string (double or single quotes) that is a file beside the scene, in TOML
+    // (`file = "x.obj"`) as in Mitsuba XML (`value="models/x.obj"`).
     let dir = scene_path.parent().unwrap_or(Path::new("."));
     let text = String::from_utf8_lossy(&text).to_string();
-    for (i, quoted) in text.split('"').enumerate() {
-        if i % 2 == 0 || quoted.is_empty() || quoted.len() > 400 || quoted.contains('\n') {
+    let quoted = ['"', '\'']
+        .into_iter()
+        .flat_map(|q| text.split(q).skip(1).step_by(2));
+    for quoted in quoted {
+        if quoted.is_empty() || quoted.len() > 400 || quoted.contains('\n') {
             continue;
         }
         let p = dir.join(quoted);

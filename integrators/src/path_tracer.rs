@@ -250,16 +250,16 @@ pub fn trace(
                     } else {
                         beta * f * ls.li * (cos / (ls.pdf_w * pmf))
                     };
-                    if ls.delta {
-                        out.pt += contrib;
+                    // The path tracer's own weight: NEE against hitting the light by the sampler.
+                    let w_pt = if ls.delta {
+                        1.0
                     } else {
-                        let pdf_light = ls.pdf_w * pmf;
-                        out.pt +=
-                            contrib * power_heuristic(pdf_light, sampler.pdf(&at, state, ls.wi));
-                    }
+                        power_heuristic(ls.pdf_w * pmf, sampler.pdf(&at, state, ls.wi))
+                    };
+                    out.pt += contrib * w_pt;
                     if combined && light.is_environment() {
-                        let pdf_bsdf = sampler.pdf(&at, state, ls.wi);
-                        out.combined += contrib * power_heuristic(ls.pdf_w * pmf, pdf_bsdf);
+                        // Environment paths come from the path tracer alone (see `light_tracer`).
+                        out.combined += contrib * w_pt;
                     } else if combined {
                         let p_l = light_pos_pdf(scene, li as u32);
                         let fwd_l = if ls.delta {

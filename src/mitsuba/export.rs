@@ -320,7 +320,7 @@ fn bsdf_xml(
         ),
         MaterialKind::Conductor | MaterialKind::RoughConductor => {
             let rough = rough(MaterialKind::RoughConductor);
-            let ior = if m.eta == Rgb::ZERO && m.k == Rgb::ZERO {
+            let ior = if m.eta == Rgb::ZERO && m.k == Rgb::ONE {
                 "<string name=\"material\" value=\"none\"/>".to_string()
             } else {
                 format!("{}{}", rgb("eta", m.eta), rgb("k", m.k))

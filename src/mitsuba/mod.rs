@@ -198,8 +198,8 @@ struct Builder<'a, 'd> {
     /// Built BSDF elements (material index) and texture elements (texture index).
     material_of: HashMap<NodeId, Material>,
     texture_of: HashMap<NodeId, u32>,
-    /// Index of each distinct material already in `materials`, by its debug text.
-    material_index: HashMap<String, u32>,
+    /// Index of each scene material by the BSDF element it comes from and its emission.
+    material_index: HashMap<(Option<NodeId>, [u32; 3]), u32>,
     /// BSDF elements being built (a reference cycle is an error, not a stack overflow).
     building: Vec<NodeId>,
 }
@@ -530,7 +530,7 @@ impl<'a, 'd> Builder<'a, 'd> {
             return Ok((Rgb::ONE, id));
         }
         Ok(match p.rgb(name)? {
-            Some((c, _)) => (c, None),
+            Some(c) => (c, None),
             None => {
                 if let Some(n) = p.get(name) {
                     return Err(self.doc.err(
@@ -587,8 +587,8 @@ impl<'a, 'd> Builder<'a, 'd> {
                 Texture::load(&self.doc.file(&file))?
             }
             "checkerboard" => {
-                let c0 = p.rgb("color0")?.map(|c| c.0).unwrap_or(Rgb::splat(0.4));
-                let c1 = p.rgb("color1")?.map(|c| c.0).unwrap_or(Rgb::splat(0.2));
+                let c0 = p.rgb("color0")?.unwrap_or(Rgb::splat(0.4));
+                let c1 = p.rgb("color1")?.unwrap_or(Rgb::splat(0.2));
                 if p.is_texture("color0") || p.is_texture("color1") {
                     return Err(self.doc.err(node, "checkerboard colours must be constant"));
                 }
@@ -696,8 +696,8 @@ impl<'a, 'd> Builder<'a, 'd> {
     }
 
     fn conductor_ior(&self, p: &Props<'a, 'd>, node: Node) -> Result<(Rgb, Rgb)> {
-        let eta = p.rgb("eta")?.map(|c| c.0);
-        let k = p.rgb("k")?.map(|c| c.0);
+        let eta = p.rgb("eta")?;
+        let k = p.rgb("k")?;
         let material = p.string("material")?;
         // Mitsuba's eta and k are relative to the exterior's index.
         let ext = self.ior(p, "ext_eta", 1.0)?;
@@ -705,8 +705,9 @@ impl<'a, 'd> Builder<'a, 'd> {
             (Some(e), Some(k), None) => Ok((e / ext, k / ext)),
             // Mitsuba: `k` defaults to 1 when `eta` is given.
             (Some(e), None, None) => Ok((e / ext, Rgb::ONE / ext)),
-            // Mitsuba's default, a perfect mirror: the Fresnel factor is 1.
-            (None, None, None | Some("none")) => Ok((Rgb::ZERO, Rgb::ZERO)),
+            // Mitsuba's default `none`: η = 0, k = 1, whose Fresnel factor is 1 at every angle
+            // (a perfect mirror).
+            (None, None, None | Some("none")) => Ok((Rgb::ZERO, Rgb::ONE)),
             (None, None, Some(m)) => {
                 self.doc.unsupported(
                     node,
@@ -714,7 +715,7 @@ impl<'a, 'd> Builder<'a, 'd> {
                     "material 'none' or explicit 'eta' and 'k' colours",
                     "a perfect mirror (material 'none')",
                 )?;
-                Ok((Rgb::ZERO, Rgb::ZERO))
+                Ok((Rgb::ZERO, Rgb::ONE))
             }
             _ => Err(self.doc.err(
                 node,
@@ -850,14 +851,16 @@ impl<'a, 'd> Builder<'a, 'd> {
             }
         }
         p.finish(&format!("bsdf '{kind}'"))?;
-        let m = m.sanitized().prepared();
+        let m = m.sanitized();
         self.material_of.insert(node.id(), m.clone());
         Ok(m)
     }
 
     /// Index of `m` in the scene's materials, adding it when new.
-    fn material_id(&mut self, m: Material) -> u32 {
-        let key = format!("{m:?}");
+    /// Index of the scene material made from BSDF element `bsdf` (`None`: the default BSDF)
+    /// with emission `m.ke`, adding `m` when new.
+    fn material_id(&mut self, bsdf: Option<NodeId>, m: Material) -> u32 {
+        let key = (bsdf, m.ke.to_array().map(f32::to_bits));
         if let Some(&i) = self.material_index.get(&key) {
             return i;
         }
@@ -922,7 +925,7 @@ impl<'a, 'd> Builder<'a, 'd> {
         p.ignore(&["face_normals"]);
         p.finish(&format!("shape '{kind}'"))?;
         // BSDF and area emitter among the nested objects.
-        let mut material = None;
+        let mut material: Option<(NodeId, Material)> = None;
         let mut radiance = None;
         for c in &p.unnamed {
             let c = self.deref(*c)?;
@@ -931,7 +934,7 @@ impl<'a, 'd> Builder<'a, 'd> {
                     if material.is_some() {
                         return Err(self.doc.err(c, "a shape has one BSDF"));
                     }
-                    material = Some(self.bsdf(c)?);
+                    material = Some((c.id(), self.bsdf(c)?));
                 }
                 "emitter" => {
                     let ek = self.kind(c)?;
@@ -949,10 +952,7 @@ impl<'a, 'd> Builder<'a, 'd> {
                             "radiance 1",
                         )?;
                     }
-                    let le = ep.rgb("radiance")?.map(|x| x.0).unwrap_or(Rgb::ONE);
-                    if !(le.min_element() >= 0.0) {
-                        return Err(self.doc.err(c, "radiance must not be negative"));
-                    }
+                    let le = self.emission(&ep, "radiance")?;
                     ep.finish("emitter 'area'")?;
                     radiance = Some(le);
                 }
@@ -967,18 +967,24 @@ impl<'a, 'd> Builder<'a, 'd> {
             }
         }
         // Mitsuba's default BSDF: one-sided diffuse of reflectance 0.5.
-        let mut m = material.unwrap_or_else(|| Material {
-            name: "default".into(),
-            two_sided: false,
-            ..Material::default()
-        });
+        let (bsdf_node, mut m) = match material {
+            Some((id, m)) => (Some(id), m),
+            None => (
+                None,
+                Material {
+                    name: "default".into(),
+                    two_sided: false,
+                    ..Material::default()
+                },
+            ),
+        };
         if let Some(le) = radiance {
             m.ke = le;
             if let Some(id) = node.attribute("id") {
                 m.name = format!("{} (emitter {id})", m.name);
             }
         }
-        let material = self.material_id(m);
+        let material = self.material_id(bsdf_node, m);
         // Mitsuba's rectangle and sphere take their front from the transformed normal (the
         // inverse transpose), not from the winding, which a mirroring transform reverses.
         let primitive = matches!(kind.as_str(), "rectangle" | "sphere");
@@ -1069,18 +1075,24 @@ impl<'a, 'd> Builder<'a, 'd> {
         }
     }
 
-    // ---- emitters outside shapes ----
+    // ---- emitters ----
+
+    /// An emitter's colour property (`radiance` or `intensity`, default 1), which must not be
+    /// negative.
+    fn emission(&self, p: &Props<'a, 'd>, name: &str) -> Result<Rgb> {
+        let c = p.rgb(name)?.unwrap_or(Rgb::ONE);
+        if !(c.min_element() >= 0.0) {
+            return Err(self.doc.err(
+                p.get(name).expect("the property was read"),
+                format!("{name} must not be negative"),
+            ));
+        }
+        Ok(c)
+    }
 
     fn emitter(&mut self, node: Node<'a, 'a>) -> Result<()> {
         let kind = self.kind(node)?;
         let p = Props::new(self.doc, node)?;
-        let intensity = |p: &Props| -> Result<Rgb> {
-            let i = p.rgb("intensity")?.map(|x| x.0).unwrap_or(Rgb::ONE);
-            if !(i.min_element() >= 0.0) {
-                return Err(self.doc.err(node, "intensity must not be negative"));
-            }
-            Ok(i)
-        };
         match kind.as_str() {
             "point" => {
                 let m = p.transform("to_world")?.unwrap_or(Mat4::IDENTITY);
@@ -1088,7 +1100,7 @@ impl<'a, 'd> Builder<'a, 'd> {
                     Some(v) => v,
                     None => m.transform_point3(Vec3::ZERO),
                 };
-                let intensity = intensity(&p)?;
+                let intensity = self.emission(&p, "intensity")?;
                 p.finish("emitter 'point'")?;
                 self.lights.push(Light::Point {
                     position,
@@ -1097,7 +1109,7 @@ impl<'a, 'd> Builder<'a, 'd> {
             }
             "spot" => {
                 let m = p.transform("to_world")?.unwrap_or(Mat4::IDENTITY);
-                let intensity = intensity(&p)?;
+                let intensity = self.emission(&p, "intensity")?;
                 let cutoff = p.float_or("cutoff_angle", 20.0)?;
                 let beam = p.float_or("beam_width", cutoff * 0.75)?;
                 if !(cutoff > 0.0 && cutoff <= 90.0 && beam >= 0.0 && beam <= cutoff) {
@@ -1129,10 +1141,7 @@ impl<'a, 'd> Builder<'a, 'd> {
                         .doc
                         .err(node, "a textured constant radiance is not supported"));
                 }
-                let le = p.rgb("radiance")?.map(|x| x.0).unwrap_or(Rgb::ONE);
-                if !(le.min_element() >= 0.0) {
-                    return Err(self.doc.err(node, "radiance must not be negative"));
-                }
+                let le = self.emission(&p, "radiance")?;
                 p.finish("emitter 'constant'")?;
                 self.lights.push(Light::Environment {
                     le,

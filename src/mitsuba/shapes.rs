@@ -48,14 +48,7 @@ pub fn cube() -> MeshData {
         ..Default::default()
     };
     // Each face: outward normal n and in-plane axes a, b with a × b = n.
-    for n in [
-        Vec3::X,
-        Vec3::NEG_X,
-        Vec3::Y,
-        Vec3::NEG_Y,
-        Vec3::Z,
-        Vec3::NEG_Z,
-    ] {
+    for n in crate::math::SIGNED_AXES {
         let a = if n.x != 0.0 {
             Vec3::Y
         } else if n.y != 0.0 {
@@ -123,25 +116,9 @@ pub fn sphere(rings: u32, segments: u32) -> MeshData {
     m
 }
 
-/// The first vertex line with a coordinate that is not a finite number.
-fn find_bad_vertex(text: &str) -> Option<(usize, String)> {
-    crate::loader::find_bad_vertex(text)
-}
-
 /// Reads an OBJ file's geometry (all objects and groups into one mesh).
 pub fn load_obj(path: &Path) -> Result<MeshData> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    if let Some((line, tok)) = find_bad_vertex(&text) {
-        return Err(Error::Syntax {
-            path: path.to_path_buf(),
-            line,
-            column: 1,
-            message: format!("vertex coordinate '{tok}' is not a finite number"),
-        });
-    }
+    let text = crate::loader::read_obj_text(path)?;
     let opts = tobj::LoadOptions {
         single_index: true,
         triangulate: true,

@@ -286,9 +286,8 @@ impl<'a, 'd> Props<'a, 'd> {
         self.value(n, &["string"]).map(Some)
     }
 
-    /// A colour: `<rgb>`, a constant `<spectrum>` or a `<float>`. Returns the node too, for
-    /// errors about the value's range.
-    pub fn rgb(&self, name: &str) -> Result<Option<(Rgb, Node<'a, 'a>)>> {
+    /// A colour: `<rgb>`, a constant `<spectrum>` or a `<float>`.
+    pub fn rgb(&self, name: &str) -> Result<Option<Rgb>> {
         let Some(n) = self.get(name) else {
             return Ok(None);
         };
@@ -311,7 +310,7 @@ impl<'a, 'd> Props<'a, 'd> {
                 "<rgb> or a constant <spectrum value=\"v\">",
                 &format!("the grey of the values' mean, {mean}"),
             )?;
-            return Ok(Some((Rgb::splat(mean), n)));
+            return Ok(Some(Rgb::splat(mean)));
         }
         let c = match numbers(&v).as_deref() {
             Some([x]) => Rgb::splat(*x),
@@ -323,7 +322,7 @@ impl<'a, 'd> Props<'a, 'd> {
                 ));
             }
         };
-        Ok(Some((c, n)))
+        Ok(Some(c))
     }
 
     /// True when property `name` exists and is not a plain colour (a texture or a `ref`).
