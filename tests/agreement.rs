@@ -11,8 +11,8 @@
 mod common;
 
 use common::{scene_path, sidak, t_critical};
-use footprint::loader::load_scene;
-use footprint_integrators::{Integrator, RenderOptions, render};
+use footprint::scene::load::load_scene;
+use footprint_integrators::{Method, RenderOptions, render};
 
 #[test]
 fn path_tracer_and_light_tracer_agree_on_cornell() {
@@ -22,16 +22,15 @@ fn path_tracer_and_light_tracer_agree_on_cornell() {
     let block = 8;
     let regions = (64 / block) * (64 / block);
     let crit = t_critical(sidak(0.01, regions as usize * 3), (renders - 1) as f64);
-    let replicate = |integrator: Integrator| -> Vec<Vec<[f64; 3]>> {
+    let replicate = |integrator: &str| -> Vec<Vec<[f64; 3]>> {
         (0..renders)
             .map(|r| {
                 let opts = RenderOptions {
-                    integrator,
+                    method: Method::from_names(integrator, "bsdf").unwrap(),
                     spp: 8,
                     time: None,
                     max_depth: 6,
                     seed: 7 + r as u64,
-                    progress: false,
                     ..Default::default()
                 };
                 let out = render(&scene, &opts, |_| {});
@@ -40,8 +39,8 @@ fn path_tracer_and_light_tracer_agree_on_cornell() {
             })
             .collect()
     };
-    let pt = replicate(Integrator::Pt);
-    let lt = replicate(Integrator::Lt);
+    let pt = replicate("pt");
+    let lt = replicate("lt");
     let stats = |reps: &Vec<Vec<[f64; 3]>>, i: usize, c: usize| {
         let xs: Vec<f64> = reps.iter().map(|r| r[i][c]).collect();
         common::mean_stderr(&xs)

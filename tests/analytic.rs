@@ -12,8 +12,8 @@
 mod common;
 
 use common::{mean_stderr, scene_path, sidak, t_critical};
-use footprint::loader::load_scene;
-use footprint_integrators::{Integrator, RenderOptions, render};
+use footprint::scene::load::load_scene;
+use footprint_integrators::{Method, RenderOptions, render};
 
 #[test]
 fn furnace_radiance_is_one_for_both_integrators() {
@@ -21,16 +21,15 @@ fn furnace_radiance_is_one_for_both_integrators() {
     let renders = 24;
     let tests = 6;
     let crit = t_critical(sidak(0.01, tests), (renders - 1) as f64);
-    for integrator in [Integrator::Pt, Integrator::Lt] {
+    for integrator in ["pt", "lt"] {
         let mut means = [Vec::new(), Vec::new(), Vec::new()];
         for r in 0..renders {
             let opts = RenderOptions {
-                integrator,
+                method: Method::from_names(integrator, "bsdf").unwrap(),
                 spp: 4,
                 time: None,
                 max_depth: 64,
                 seed: 1000 + r as u64,
-                progress: false,
                 ..Default::default()
             };
             let out = render(&scene, &opts, |_| {});
@@ -68,7 +67,6 @@ fn furnace_radiance_is_one_for_both_integrators() {
 /// error from the renders' spread.
 #[test]
 fn uniform_environment_lights_a_convex_sphere_exactly() {
-    use footprint_integrators::Guide;
     let dir = std::env::temp_dir().join(format!("footprint-env-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let xml = dir.join("scene.xml");
@@ -86,18 +84,18 @@ fn uniform_environment_lights_a_convex_sphere_exactly() {
 </scene>"#,
     )
     .unwrap();
-    let mut scene = footprint::mitsuba::load(&xml, &Default::default()).unwrap();
+    let mut scene = footprint::scene::mitsuba::load(&xml, &Default::default()).unwrap();
     assert!(scene.effects.environment);
     // Enough photons that the sphere's queries find k_p = 50 and guiding happens.
     scene.maps.photons = 400_000;
     scene.maps.importons = 50_000;
     let l = [1.0f64, 0.5, 0.25];
     let configs = [
-        (Integrator::Pt, Guide::Bsdf),
-        (Integrator::Lt, Guide::Bsdf),
-        (Integrator::Combined, Guide::Bsdf),
-        (Integrator::Pt, Guide::Footprint),
-        (Integrator::Combined, Guide::Footprint),
+        ("pt", "bsdf"),
+        ("lt", "bsdf"),
+        ("combined", "bsdf"),
+        ("pt", "footprint"),
+        ("combined", "footprint"),
     ];
     let renders = 16;
     let crit = t_critical(sidak(0.01, configs.len() * 6), (renders - 1) as f64);
@@ -111,18 +109,16 @@ fn uniform_environment_lights_a_convex_sphere_exactly() {
         ];
         for r in 0..renders {
             let opts = RenderOptions {
-                integrator,
-                guide,
+                method: Method::from_names(integrator, guide).unwrap(),
                 spp: 16,
                 time: None,
                 max_depth: 6,
                 seed: 500 + r as u64,
-                progress: false,
                 ..Default::default()
             };
             let out = render(&scene, &opts, |_| {});
             assert!(out.image.all_valid() && out.stats.rejected == 0);
-            if guide == Guide::Footprint {
+            if guide == "footprint" {
                 let g = &out.camera_guide;
                 assert!(
                     g.prepared > 0 && g.fallbacks * 2 < g.prepared,
@@ -154,7 +150,7 @@ fn uniform_environment_lights_a_convex_sphere_exactly() {
             }
         }
         for (k, (name, factor)) in [("sphere", 0.5), ("background", 1.0)].iter().enumerate() {
-            if k == 1 && integrator == Integrator::Lt {
+            if k == 1 && integrator == "lt" {
                 continue;
             }
             for c in 0..3 {

@@ -13,8 +13,9 @@ mod common;
 use common::chi2::ChiSquareTest;
 use common::{mean_stderr, sidak};
 use footprint::Rgb;
+use footprint::bsdf::material::{Material, MaterialKind};
+use footprint::bsdf::microfacet::Microfacet;
 use footprint::bsdf::{Bsdf, Lobes, TransportMode, fresnel_conductor, fresnel_dielectric};
-use footprint::material::{Material, MaterialKind, Microfacet};
 use footprint::rng::Rng;
 use footprint::sampling::sample_uniform_sphere;
 use glam::{Vec2, Vec3};
@@ -1119,7 +1120,7 @@ fn one_sided_is_black_from_the_back() {
 /// `2/α² - 2` is soft.
 #[test]
 fn mitsuba_kinds_delta_and_guiding() {
-    use footprint::direction_sampler::guides_at;
+    use footprint::guide::guides_at;
     let lobes = |kind, alpha| {
         let m = Material {
             alpha,

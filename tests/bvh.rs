@@ -5,9 +5,9 @@
 mod common;
 
 use common::scene_path;
-use footprint::loader::load_scene;
 use footprint::rng::Rng;
 use footprint::sampling::sample_uniform_sphere;
+use footprint::scene::load::load_scene;
 
 #[test]
 fn bvh_matches_brute_force_on_every_scene() {

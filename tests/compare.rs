@@ -6,7 +6,7 @@ mod common;
 
 use footprint::Rgb;
 use footprint::film::Image;
-use footprint::loader::load_scene;
+use footprint::scene::load::load_scene;
 use footprint_integrators::compare::{
     SPOT_FACTOR, log_log_slope, mae, reference, rel_mse, spots, time_to_reach,
 };

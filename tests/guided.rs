@@ -10,20 +10,20 @@
 mod common;
 
 use common::{mean_stderr, scene_path, sidak, t_critical};
-use footprint::loader::load_scene;
 use footprint::scene::Scene;
-use footprint_integrators::{Guide, Integrator, RenderOptions, render};
+use footprint::scene::load::load_scene;
+use footprint_integrators::{Method, RenderOptions, render};
 
-const PAIRS: [(Integrator, Guide); 9] = [
-    (Integrator::Pt, Guide::Bsdf),
-    (Integrator::Pt, Guide::Grid),
-    (Integrator::Pt, Guide::Footprint),
-    (Integrator::Lt, Guide::Bsdf),
-    (Integrator::Lt, Guide::Grid),
-    (Integrator::Lt, Guide::Footprint),
-    (Integrator::Combined, Guide::Bsdf),
-    (Integrator::Combined, Guide::Grid),
-    (Integrator::Combined, Guide::Footprint),
+const PAIRS: [&str; 9] = [
+    "pt-bsdf",
+    "pt-grid",
+    "pt-footprint",
+    "lt-bsdf",
+    "lt-grid",
+    "lt-footprint",
+    "combined-bsdf",
+    "combined-grid",
+    "combined-footprint",
 ];
 
 fn small(name: &str, w: u32, h: u32, particles: usize) -> Scene {
@@ -34,43 +34,28 @@ fn small(name: &str, w: u32, h: u32, particles: usize) -> Scene {
     s
 }
 
-fn opts(
-    integrator: Integrator,
-    guide: Guide,
-    spp: u32,
-    max_depth: u32,
-    seed: u64,
-) -> RenderOptions {
+fn opts(method: &str, spp: u32, max_depth: u32, seed: u64) -> RenderOptions {
     RenderOptions {
-        integrator,
-        guide,
+        method: Method::parse(method).unwrap(),
         guide_params: Default::default(),
         spp,
         time: None,
         max_depth,
         seed,
-        progress: false,
     }
 }
 
 fn agreement(scene: &Scene, side: u32, renders: usize, spp: u32, max_depth: u32) {
-    let replicate = |integrator, guide, seed: u64| -> Vec<Vec<[f64; 3]>> {
+    let replicate = |m: &str, seed: u64| -> Vec<Vec<[f64; 3]>> {
         (0..renders)
             .map(|r| {
-                let out = render(
-                    scene,
-                    &opts(integrator, guide, spp, max_depth, seed + r as u64),
-                    |_| {},
-                );
-                assert!(
-                    out.image.all_valid(),
-                    "{integrator:?} {guide:?}: invalid pixel"
-                );
+                let out = render(scene, &opts(m, spp, max_depth, seed + r as u64), |_| {});
+                assert!(out.image.all_valid(), "{m}: invalid pixel");
                 common::region_means(&out.image, side)
             })
             .collect()
     };
-    let reference = replicate(Integrator::Pt, Guide::Bsdf, 5000);
+    let reference = replicate("pt-bsdf", 5000);
     let n_regions = (side * side) as usize;
     let crit = t_critical(
         sidak(0.01, PAIRS.len() * n_regions * 3),
@@ -80,10 +65,10 @@ fn agreement(scene: &Scene, side: u32, renders: usize, spp: u32, max_depth: u32)
         mean_stderr(&reps.iter().map(|r| r[i][c]).collect::<Vec<_>>())
     };
     let mut failures = Vec::new();
-    for (integrator, guide) in PAIRS {
+    for m in PAIRS {
         // Other seeds than the reference's: the unguided path tracer is compared with an
         // independent replicate set of itself.
-        let reps = replicate(integrator, guide, 1000);
+        let reps = replicate(m, 1000);
         let mut worst = 0.0f64;
         for i in 0..n_regions {
             for c in 0..3 {
@@ -96,11 +81,11 @@ fn agreement(scene: &Scene, side: u32, renders: usize, spp: u32, max_depth: u32)
                 let t = (ma - mb).abs() / se.max(1e-30);
                 worst = worst.max(t);
                 if t > crit {
-                    failures.push(format!("{integrator:?} {guide:?} region {i} channel {c}: {ma:.5} ± {sa:.5} vs reference {mb:.5} ± {sb:.5} (|t| {t:.2})"));
+                    failures.push(format!("{m} region {i} channel {c}: {ma:.5} ± {sa:.5} vs reference {mb:.5} ± {sb:.5} (|t| {t:.2})"));
                 }
             }
         }
-        eprintln!("{integrator:?} {guide:?}: largest |t| {worst:.2} (critical {crit:.2})");
+        eprintln!("{m}: largest |t| {worst:.2} (critical {crit:.2})");
     }
     assert!(
         failures.is_empty(),
@@ -126,27 +111,20 @@ fn every_pair_finds_radiance_one_in_the_furnace() {
     let scene = small("furnace", 16, 16, 20_000);
     let renders = 20;
     let crit = t_critical(sidak(0.01, PAIRS.len() * 3), (renders - 1) as f64);
-    for (integrator, guide) in PAIRS {
+    for m in PAIRS {
         let mut means = [Vec::new(), Vec::new(), Vec::new()];
         for r in 0..renders {
-            let out = render(
-                &scene,
-                &opts(integrator, guide, 2, 64, 50 + r as u64),
-                |_| {},
-            );
-            let m = out.image.mean();
+            let out = render(&scene, &opts(m, 2, 64, 50 + r as u64), |_| {});
+            let image_mean = out.image.mean();
             for c in 0..3 {
-                means[c].push(m[c] as f64);
+                means[c].push(image_mean[c] as f64);
             }
         }
-        for (c, m) in means.iter().enumerate() {
-            let (mean, se) = mean_stderr(m);
+        for (c, channel) in means.iter().enumerate() {
+            let (mean, se) = mean_stderr(channel);
             let t = (mean - 1.0).abs() / se.max(1e-9);
-            eprintln!("{integrator:?} {guide:?} channel {c}: {mean:.4} ± {se:.4}");
-            assert!(
-                t <= crit,
-                "{integrator:?} {guide:?} channel {c}: {mean} ± {se}, not 1"
-            );
+            eprintln!("{m} channel {c}: {mean:.4} ± {se:.4}");
+            assert!(t <= crit, "{m} channel {c}: {mean} ± {se}, not 1");
         }
     }
 }
@@ -155,22 +133,19 @@ fn every_pair_finds_radiance_one_in_the_furnace() {
 #[test]
 fn guided_images_do_not_depend_on_the_thread_count() {
     let scene = small("cornell", 20, 16, 10_000);
-    for (integrator, guide) in [
-        (Integrator::Combined, Guide::Footprint),
-        (Integrator::Combined, Guide::Grid),
-    ] {
+    for m in ["combined-footprint", "combined-grid"] {
         let run = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()
                 .unwrap();
-            pool.install(|| render(&scene, &opts(integrator, guide, 2, 6, 9), |_| {}))
+            pool.install(|| render(&scene, &opts(m, 2, 6, 9), |_| {}))
         };
         let (a, b) = (run(1), run(3));
         for ((na, ia), (_, ib)) in a.layers.iter().zip(&b.layers) {
             assert!(
                 ia.pixels == ib.pixels,
-                "{integrator:?} {guide:?} layer {na}: depends on the thread count"
+                "{m} layer {na}: depends on the thread count"
             );
         }
     }
@@ -229,21 +204,15 @@ fn hard_cases_stay_stable() {
         ("hard", hard_scene()),
     ];
     for (name, scene) in &scenes {
-        for (integrator, guide) in PAIRS {
-            let out = render(scene, &opts(integrator, guide, 2, 10, 3), |_| {});
+        for m in PAIRS {
+            let out = render(scene, &opts(m, 2, 10, 3), |_| {});
             for (layer, img) in &out.layers {
-                assert!(
-                    img.all_valid(),
-                    "{name} {integrator:?} {guide:?} {layer}: invalid pixel"
-                );
+                assert!(img.all_valid(), "{name} {m} {layer}: invalid pixel");
             }
-            assert_eq!(
-                out.stats.rejected, 0,
-                "{name} {integrator:?} {guide:?}: rejected samples"
-            );
+            assert_eq!(out.stats.rejected, 0, "{name} {m}: rejected samples");
             assert!(out.stats.max_luminance.is_finite());
             eprintln!(
-                "{name} {integrator:?} {guide:?}: mean {:.5}, largest single-sample contribution {:.3}, fallbacks {}/{} + {}/{}",
+                "{name} {m}: mean {:.5}, largest single-sample contribution {:.3}, fallbacks {}/{} + {}/{}",
                 out.image.mean().y,
                 out.stats.max_luminance,
                 out.camera_guide.fallbacks,

@@ -8,17 +8,18 @@ mod common;
 use common::chi2::ChiSquareTest;
 use common::{mean_stderr, scene_path, sidak, t_critical};
 use footprint::Rgb;
-use footprint::geometry::offset_ray_origin;
-use footprint::loader::load_scene;
-use footprint::math::{Frame, PI};
-use footprint::particle_map::{
-    MapKind, NORMAL_COS_MIN, PLANE_FRACTION, ParticleInput, ParticleMap, f16_to_f32, f32_to_f16,
+use footprint::guide::particle_map::{
+    MapKind, NORMAL_COS_MIN, PLANE_FRACTION, ParticleInput, ParticleMap, f16_to_f32, weight_to_f16,
 };
+use footprint::guide::sampler::GuidedSampler;
+use footprint::math::{Frame, PI};
 use footprint::rng::Rng;
 use footprint::sampling::sample_cosine_hemisphere;
 use footprint::scene::Scene;
+use footprint::scene::geometry::offset_ray_origin;
+use footprint::scene::load::load_scene;
+use footprint_integrators::integrator::path_tracing::radiance_along;
 use footprint_integrators::passes::{PassSettings, light_pass, view_pass};
-use footprint_integrators::path_tracer::radiance_along;
 use glam::Vec3;
 use std::path::PathBuf;
 
@@ -55,13 +56,13 @@ fn random_particles(n: usize, seed: u64) -> Vec<ParticleInput> {
 #[test]
 fn half_floats_round_trip() {
     for x in [1.0f32, 0.5, 3.14159, 1e-3, 6.1e-5, 1e-6, 32768.0, 65504.0] {
-        let y = f16_to_f32(f32_to_f16(x));
+        let y = f16_to_f32(weight_to_f16(x));
         let tol = if x >= 6.2e-5 { x * 1e-3 } else { 6e-8 };
         assert!((x - y).abs() <= tol, "{x} -> {y}");
     }
-    assert_eq!(f32_to_f16(-1.0), 0);
-    assert_eq!(f32_to_f16(f32::NAN), 0);
-    assert_eq!(f16_to_f32(f32_to_f16(1e9)), 65504.0);
+    assert_eq!(weight_to_f16(-1.0), 0);
+    assert_eq!(weight_to_f16(f32::NAN), 0);
+    assert_eq!(f16_to_f32(weight_to_f16(1e9)), 65504.0);
 }
 
 /// The query returns exactly the `k` nearest particles that pass the exclusion rules (the
@@ -214,7 +215,7 @@ fn albedo_at(scene: &Scene, p: &ParticleInput) -> Rgb {
 #[test]
 fn light_pass_conserves_flux_on_cornell() {
     let scene = load_scene(&scene_path("cornell")).unwrap();
-    let out = light_pass(&scene, &pass_settings(200_000, 5));
+    let out = light_pass(&scene, &pass_settings(200_000, 5), &GuidedSampler::bsdf());
     let s = &out.stats;
     // Sums in double precision: 10^5 single-precision additions drift by ~1e-3.
     let sum =
@@ -283,7 +284,11 @@ fn photon_irradiance_agrees_with_path_tracing_on_cornell() {
     let mut photon_est = vec![Vec::new(); points.len()];
     let mut buf = Vec::new();
     for b in 0..batches {
-        let out = light_pass(&scene, &pass_settings(150_000, 100 + b));
+        let out = light_pass(
+            &scene,
+            &pass_settings(150_000, 100 + b),
+            &GuidedSampler::bsdf(),
+        );
         let map = ParticleMap::build(MapKind::Photons, &out.particles);
         for (i, (p, n)) in points.iter().enumerate() {
             map.query(*p, *n, usize::MAX, r, |_| 1.0, &mut buf);
@@ -364,7 +369,11 @@ fn importon_density_matches_camera_importance_on_cornell() {
     let mut est = vec![Vec::new(); points.len()];
     let mut buf = Vec::new();
     for b in 0..batches {
-        let out = view_pass(&scene, &pass_settings(100_000, 200 + b));
+        let out = view_pass(
+            &scene,
+            &pass_settings(100_000, 200 + b),
+            &GuidedSampler::bsdf(),
+        );
         let first: Vec<ParticleInput> = out
             .particles
             .iter()
@@ -421,7 +430,7 @@ fn importons_behind_coloured_glass_carry_its_colour() {
     std::fs::write(d.join("s.toml"), toml).unwrap();
     let scene = load_scene(&d.join("s.toml")).unwrap();
     assert!(scene.effects.coloured_filtering && scene.effects.refraction);
-    let out = view_pass(&scene, &pass_settings(100_000, 9));
+    let out = view_pass(&scene, &pass_settings(100_000, 9), &GuidedSampler::bsdf());
     let on_wall = |p: &&ParticleInput| (p.position.z - 2.0).abs() < 1e-3;
     let (mut through, mut direct) = (0, 0);
     for p in out.particles.iter().filter(on_wall) {

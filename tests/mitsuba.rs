@@ -17,9 +17,9 @@ mod common;
 
 use common::{sidak, t_critical};
 use footprint::film::Image;
-use footprint::image_io::read_exr;
-use footprint::mitsuba::{self, ImportOptions};
-use footprint_integrators::{Integrator, RenderOptions, render};
+use footprint::film::image_io::read_exr;
+use footprint::scene::mitsuba::{self, ImportOptions};
+use footprint_integrators::{Method, RenderOptions, render};
 use std::path::PathBuf;
 
 const REF_BATCHES: usize = 32;
@@ -59,7 +59,7 @@ fn blocks(img: &Image, f: impl Fn(f64) -> f64) -> Vec<[f64; 3]> {
     out
 }
 
-fn check(case: &Case, integrator: Integrator) {
+fn check(case: &Case, integrator: &str) {
     let exported = common::scenes_dir()
         .join(case.name)
         .join("mitsuba")
@@ -92,12 +92,11 @@ fn check(case: &Case, integrator: Integrator) {
     let reps: Vec<Vec<[f64; 3]>> = (0..case.replicates)
         .map(|r| {
             let o = RenderOptions {
-                integrator,
+                method: Method::from_names(integrator, "bsdf").unwrap(),
                 spp: case.spp,
                 time: None,
                 max_depth: case.max_depth,
                 seed: 100 + r as u64,
-                progress: false,
                 ..Default::default()
             };
             let out = render(&scene, &o, |_| {});
@@ -171,7 +170,7 @@ const CORNELL: Case = Case {
 
 #[test]
 fn cornell_matches_mitsuba() {
-    check(&CORNELL, Integrator::Pt);
+    check(&CORNELL, "pt");
 }
 
 #[test]
@@ -185,7 +184,7 @@ fn door_matches_mitsuba() {
             replicates: 24,
             spp: 128,
         },
-        Integrator::Pt,
+        "pt",
     );
 }
 
@@ -205,7 +204,7 @@ fn desk_matches_mitsuba() {
             // spread honest; the bound itself is unchanged.
             spp: 256,
         },
-        Integrator::Pt,
+        "pt",
     );
 }
 
@@ -227,13 +226,13 @@ fn features_match_mitsuba() {
         replicates: 24,
         spp: 64,
     };
-    check(&case, Integrator::Pt);
+    check(&case, "pt");
 }
 
 /// The light tracer splats through the same filter and agrees too.
 #[test]
 fn cornell_light_tracing_matches_mitsuba() {
-    check(&CORNELL, Integrator::Lt);
+    check(&CORNELL, "lt");
 }
 
 /// The public scenes beside the repository (`../shared/scenes-ext`: Veach Ajar and two
@@ -271,8 +270,7 @@ fn public_scenes_import_and_render() {
         let o = RenderOptions {
             spp: 4,
             time: None,
-            progress: false,
-            ..RenderOptions::from_scene(&s)
+            ..RenderOptions::from_scene(&s).unwrap()
         };
         let out = render(&s, &o, |_| {});
         assert!(out.image.all_valid() && out.stats.rejected == 0, "{scene}");

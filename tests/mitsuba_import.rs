@@ -5,11 +5,12 @@
 
 mod common;
 
-use footprint::filter::{FilterKind, PixelFilter};
-use footprint::light::Light;
-use footprint::material::{MaterialKind, Microfacet};
-use footprint::mitsuba::{self, ImportOptions};
+use footprint::bsdf::material::MaterialKind;
+use footprint::bsdf::microfacet::Microfacet;
+use footprint::film::filter::{FilterKind, PixelFilter};
 use footprint::scene::Scene;
+use footprint::scene::light::Light;
+use footprint::scene::mitsuba::{self, ImportOptions};
 use glam::{Vec2, Vec3};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -418,9 +419,9 @@ fn lenient_replaces_and_says_so() {
 #[test]
 fn export_round_trip() {
     let src = common::scene_path("cornell");
-    let scene = footprint::loader::load_scene(&src).unwrap();
+    let scene = footprint::scene::load::load_scene(&src).unwrap();
     let d = dir_with("export", &[]);
-    footprint::mitsuba::export::export(&scene, &src, &d).unwrap();
+    footprint::scene::mitsuba::export::export(&scene, &src, &d).unwrap();
     let back = load(&d, &[], false).unwrap();
     assert_eq!(back.triangles.len(), scene.triangles.len());
     assert_eq!(back.lights.len(), scene.lights.len());

@@ -1,4 +1,5 @@
-//! The direction samplers: sampling and pdf agree, always (METHOD.md, every pitfall a test).
+//! The direction samplers: sampling and pdf agree, always (docs/method.md, every pitfall a
+//! test).
 //!
 //! Each configuration places particles in the local frame of a surface (normal +z) and runs
 //! the footprint sampler (both radius rules) and the grid sampler through the chi-square
@@ -15,15 +16,15 @@ use common::chi2::ChiSquareTest;
 use common::sidak;
 use footprint::Rgb;
 use footprint::bsdf::{Bsdf, Lobes, TransportMode};
-use footprint::direction_sampler::{
-    BsdfSampler, DirectionSampler, GuideParams, GuideState, RadiusRule, ScatterPoint,
-};
-use footprint::footprint_sampler::{FootprintSampler, cap_solid_angle};
-use footprint::grid_sampler::GridSampler;
+use footprint::guide::footprint::{FootprintDistribution, FootprintGuide, cap_solid_angle};
+use footprint::guide::grid::GridDistribution;
+use footprint::guide::particle_map::{MapKind, ParticleMap};
+use footprint::guide::sampler::{GuideSource, GuidedSampler, SamplerState, ScatterPoint};
+use footprint::guide::{ChannelMix, GuideDistribution, GuideParticle};
 use footprint::math::Frame;
-use footprint::particle_map::{MapKind, ParticleMap};
 use footprint::rng::Rng;
 use footprint::sampling::{sample_cosine_hemisphere, sample_uniform_sphere};
+use footprint::settings::{GuideParams, RadiusRule};
 use glam::Vec3;
 
 fn dir(theta_deg: f32, phi_deg: f32) -> Vec3 {
@@ -54,9 +55,36 @@ fn glossy(n: f32) -> Bsdf {
     )
 }
 
-/// An empty map: the samplers are prepared from explicit particles in these tests.
-fn empty_map() -> ParticleMap {
-    ParticleMap::build(MapKind::Photons, &[])
+/// Particles given in the local frame of `frame` with scalar contributions, as a guide
+/// sees them: world directions, the contribution in every channel, inadmissible ones (zero,
+/// grazing) left out as the samplers leave them out.
+fn guide_particles(
+    frame: &Frame,
+    local: &[(Vec3, f32)],
+    params: &GuideParams,
+) -> Vec<GuideParticle> {
+    local
+        .iter()
+        .map(|(d, c)| GuideParticle {
+            dir: frame.to_world(*d).normalize(),
+            weight: Rgb::splat(*c),
+        })
+        .filter(|p| p.admissible(frame.z, params))
+        .collect()
+}
+
+/// A sampler that guides everywhere with one prepared distribution (no map).
+fn fixed<'a>(dist: &'a dyn GuideDistribution, params: &GuideParams) -> GuidedSampler<'a> {
+    GuidedSampler {
+        source: GuideSource::Fixed(dist),
+        params: params.clone(),
+        soft_glossy_max: 1e9,
+    }
+}
+
+/// The channel mixture the sampler uses at `at` for `dist`.
+fn mix_at(at: &ScatterPoint, dist: &dyn GuideDistribution) -> ChannelMix {
+    ChannelMix::new(at.channel_factor(), dist.channel_totals()).unwrap()
 }
 
 struct Config {
@@ -231,31 +259,33 @@ fn params(rule: RadiusRule) -> GuideParams {
     }
 }
 
-/// Cell masses of the footprint mixture: BSDF part by the midpoint rule, caps exactly.
+/// Cell masses of the footprint mixture: BSDF part by the midpoint rule, caps exactly (in
+/// each cap's own coordinates).
 fn footprint_masses(
     test: &ChiSquareTest,
     at: &ScatterPoint,
-    state: &GuideState,
+    dist: &FootprintDistribution,
+    mix: &ChannelMix,
     p_bsdf: f32,
 ) -> Vec<f64> {
     let mut m: Vec<f64> = test.masses_from_pdf(|d| p_bsdf as f64 * at.bsdf.pdf(at.wo, d) as f64);
-    let frame = state.frame.unwrap();
     let n = 400;
-    for cap in &state.footprint.caps {
-        if cap.prob == 0.0 {
+    for (i, cap) in dist.caps.iter().enumerate() {
+        let prob = dist.probability(mix, i);
+        if prob == 0.0 {
             continue;
         }
         let (t1, t2) = cap.dir.any_orthonormal_pair();
-        let w = (1.0 - p_bsdf) as f64 * cap.prob as f64 / (n * n) as f64;
+        let w = (1.0 - p_bsdf) as f64 * prob as f64 / (n * n) as f64;
         for a in 0..n {
             let omc = (a as f64 + 0.5) / n as f64 * cap.one_minus_cos as f64;
             let cos = 1.0 - omc;
             let sin = (omc * (2.0 - omc)).max(0.0).sqrt();
             for b in 0..n {
                 let phi = (b as f64 + 0.5) / n as f64 * std::f64::consts::TAU;
-                let local = cap.dir.as_dvec3() * cos
+                let world = cap.dir.as_dvec3() * cos
                     + (t1.as_dvec3() * phi.cos() + t2.as_dvec3() * phi.sin()) * sin;
-                if let Some(c) = test.cell_of(frame.to_world(local.as_vec3())) {
+                if let Some(c) = test.cell_of(world.as_vec3()) {
                     m[c] += w;
                 }
             }
@@ -271,17 +301,19 @@ fn footprint_masses(
 fn grid_masses(
     test: &ChiSquareTest,
     at: &ScatterPoint,
-    sampler: &GridSampler,
-    state: &GuideState,
+    frame: &Frame,
+    grid: &GridDistribution,
+    mix: &ChannelMix,
+    params: &GuideParams,
 ) -> Vec<f64> {
     use std::f64::consts::{PI, TAU};
     assert_eq!(
         test.theta_max, PI,
         "the exact grid masses assume a whole-sphere harness"
     );
-    let p_bsdf = sampler.params.p_bsdf;
+    let p_bsdf = params.p_bsdf;
     let mut m: Vec<f64> = test.masses_from_pdf(|d| p_bsdf as f64 * at.bsdf.pdf(at.wo, d) as f64);
-    let side = sampler.params.grid_side;
+    let side = params.grid_side;
     let overlap = |a0: f64, a1: f64, b0: f64, b1: f64| (a1.min(b1) - a0.max(b0)).max(0.0);
     for hemi in [1.0f64, -1.0] {
         for j in 0..side {
@@ -302,11 +334,11 @@ fn grid_masses(
                         (hemi * c) as f32,
                     )
                 };
-                let density = state.grid.pdf(centre) as f64;
+                let density = grid.pdf(mix, frame.to_world(centre)) as f64;
                 if density == 0.0 {
                     continue;
                 }
-                let mass = (1.0 - p_bsdf) as f64 * density * state.grid.cell_solid_angle() as f64;
+                let mass = (1.0 - p_bsdf) as f64 * density * grid.cell_solid_angle() as f64;
                 // In signed cos θ: [c_lo, c_hi].
                 let (c_lo, c_hi) = if hemi > 0.0 {
                     (1.0 - u1, 1.0 - u0)
@@ -335,7 +367,6 @@ fn grid_masses(
 
 #[test]
 fn every_sampler_passes_chi_square_in_every_configuration() {
-    let map = empty_map();
     let configs = configs();
     let samplers = 4; // footprint (two rules), grid, bsdf
     let alpha = sidak(0.01, configs.len() * samplers);
@@ -351,20 +382,17 @@ fn every_sampler_passes_chi_square_in_every_configuration() {
             integration_res: if c.theta_max < 1.0 { 6 } else { 4 },
             seed: 17,
         };
-        let local: Vec<(Vec3, f32)> = c.particles.clone();
         for rule in [RadiusRule::SolidAngle, RadiusRule::Literal] {
-            let fp = FootprintSampler::new(&map, params(rule), 1.0, 100.0);
-            let mut state = GuideState::default();
-            fp.prepare_with(frame, &local, &mut state);
-            if !state.guided {
-                // Every particle left out (grazing below the floor): BSDF sampling only.
-                assert_eq!(
-                    c.name, "normal and horizon or none",
-                    "{}: unexpected fallback",
-                    c.name
-                );
-            }
-            let masses = footprint_masses(&test, &at, &state, fp.params.p_bsdf);
+            let params = params(rule);
+            let particles = guide_particles(&frame, &c.particles, &params);
+            assert!(!particles.is_empty(), "{}: every particle left out", c.name);
+            let dist = FootprintDistribution::build(&frame, &particles, &params);
+            let fp = fixed(&dist, &params);
+            let mut state = SamplerState::default();
+            fp.prepare(&at, &mut state);
+            assert!(state.guided(), "{}: unexpected fallback", c.name);
+            let mix = mix_at(&at, &dist);
+            let masses = footprint_masses(&test, &at, &dist, &mix, params.p_bsdf);
             let r = test.run_with_masses(|rng| fp.sample(&at, &state, rng).map(|s| s.wi), &masses);
             eprintln!(
                 "{} footprint {}: chi2 {:.0} dof {} p {:.3e}",
@@ -381,7 +409,8 @@ fn every_sampler_passes_chi_square_in_every_configuration() {
                 rule.name(),
                 r.p_value
             );
-            // The pdf the sampler reports is that mixture, point by point.
+            // The pdf the sampler reports is that mixture, point by point: summed here over
+            // every cap by brute force (no hierarchy, no channel code).
             let mut rng = Rng::new(5, 0, 0);
             for _ in 0..2000 {
                 let d = if rng.uniform() < 0.5 {
@@ -392,14 +421,11 @@ fn every_sampler_passes_chi_square_in_every_configuration() {
                         None => continue,
                     }
                 };
-                let l = frame.to_local(d).as_dvec3();
-                let mut expect = fp.params.p_bsdf as f64 * at.bsdf.pdf(at.wo, d) as f64;
-                for cap in &state.footprint.caps {
-                    let cd = cap.dir.as_dvec3();
-                    if l.dot(cd) > 0.0 && l.cross(cd).length_squared() < cap.r2 as f64 {
-                        expect += (1.0 - fp.params.p_bsdf as f64)
-                            * cap.prob as f64
-                            * cap.inv_solid_angle as f64;
+                let mut expect = params.p_bsdf as f64 * at.bsdf.pdf(at.wo, d) as f64;
+                for (i, cap) in dist.caps.iter().enumerate() {
+                    if cap.contains(d) {
+                        expect += (1.0 - params.p_bsdf as f64) * dist.probability(&mix, i) as f64
+                            / (2.0 * std::f64::consts::PI * cap.one_minus_cos as f64);
                     }
                 }
                 let got = fp.pdf(&at, &state, d) as f64;
@@ -413,12 +439,18 @@ fn every_sampler_passes_chi_square_in_every_configuration() {
         // The grid sampler (its cells are far coarser than the narrow harness regions, so it
         // is tested where the harness covers the whole sphere).
         if c.theta_max == std::f64::consts::PI {
-            let grid = GridSampler::new(&map, GuideParams::default(), 1.0, 100.0);
-            let mut state = GuideState::default();
-            grid.prepare_with(frame, &local, &mut state);
-            let masses = grid_masses(&test, &at, &grid, &state);
-            let r =
-                test.run_with_masses(|rng| grid.sample(&at, &state, rng).map(|s| s.wi), &masses);
+            let params = GuideParams::default();
+            let particles = guide_particles(&frame, &c.particles, &params);
+            let grid = GridDistribution::build(&frame, &particles, params.grid_side);
+            let sampler = fixed(&grid, &params);
+            let mut state = SamplerState::default();
+            sampler.prepare(&at, &mut state);
+            let mix = mix_at(&at, &grid);
+            let masses = grid_masses(&test, &at, &frame, &grid, &mix, &params);
+            let r = test.run_with_masses(
+                |rng| sampler.sample(&at, &state, rng).map(|s| s.wi),
+                &masses,
+            );
             eprintln!(
                 "{} grid: chi2 {:.0} dof {} p {:.3e}",
                 c.name, r.chi2, r.dof, r.p_value
@@ -426,10 +458,11 @@ fn every_sampler_passes_chi_square_in_every_configuration() {
             assert!(r.p_value > alpha, "{} grid: p = {:.3e}", c.name, r.p_value);
         }
         // BSDF sampling alone.
-        let state = GuideState::default();
+        let bsdf = GuidedSampler::bsdf();
+        let state = SamplerState::default();
         let r = test.run(
-            |rng| BsdfSampler.sample(&at, &state, rng).map(|s| s.wi),
-            |d| BsdfSampler.pdf(&at, &state, d) as f64,
+            |rng| bsdf.sample(&at, &state, rng).map(|s| s.wi),
+            |d| bsdf.pdf(&at, &state, d) as f64,
         );
         assert!(r.p_value > alpha, "{} bsdf: p = {:.3e}", c.name, r.p_value);
     }
@@ -442,7 +475,6 @@ fn every_sampler_passes_chi_square_in_every_configuration() {
 /// and wherever `f · cos > 0` the mixture pdf is positive (no coverage holes).
 #[test]
 fn random_configurations_stay_finite_and_consistent() {
-    let map = empty_map();
     let mut rng = Rng::new(99, 0, 0);
     for config in 0..300 {
         let n = 1 + (rng.uniform() * 80.0) as usize;
@@ -503,15 +535,19 @@ fn random_configurations_stay_finite_and_consistent() {
         } else {
             RadiusRule::Literal
         };
-        let fp = FootprintSampler::new(&map, params(rule), 1.0, 1e9);
-        let grid = GridSampler::new(&map, GuideParams::default(), 1.0, 1e9);
-        let mut s_fp = GuideState::default();
-        let mut s_grid = GuideState::default();
-        fp.prepare_with(frame, &particles, &mut s_fp);
-        grid.prepare_with(frame, &particles, &mut s_grid);
-        let samplers: [(&dyn DirectionSampler, &GuideState); 3] =
-            [(&fp, &s_fp), (&grid, &s_grid), (&BsdfSampler, &s_fp)];
-        for (sampler, state) in samplers {
+        let params = params(rule);
+        let particles = guide_particles(&frame, &particles, &params);
+        let fp_dist = FootprintDistribution::build(&frame, &particles, &params);
+        let grid_dist = GridDistribution::build(&frame, &particles, params.grid_side);
+        let samplers = [
+            ("footprint", fixed(&fp_dist, &params)),
+            ("grid", fixed(&grid_dist, &params)),
+            ("bsdf", GuidedSampler::bsdf()),
+        ];
+        for (name, sampler) in &samplers {
+            let mut state = SamplerState::default();
+            sampler.prepare(&at, &mut state);
+            let state = &state;
             for _ in 0..200 {
                 if let Some(s) = sampler.sample(&at, state, &mut rng) {
                     assert!(
@@ -521,7 +557,7 @@ fn random_configurations_stay_finite_and_consistent() {
                     assert!(
                         s.pdf_w.is_finite() && s.pdf_w > 0.0,
                         "config {config} {}: pdf {}",
-                        sampler.name(),
+                        name,
                         s.pdf_w
                     );
                     assert!(
@@ -533,7 +569,7 @@ fn random_configurations_stay_finite_and_consistent() {
                     assert!(
                         (p - s.pdf_w).abs() <= 1e-4 * p.max(1e-6),
                         "config {config} {}: sample pdf {} vs pdf {p}",
-                        sampler.name(),
+                        name,
                         s.pdf_w
                     );
                 }
@@ -545,7 +581,7 @@ fn random_configurations_stay_finite_and_consistent() {
                     assert!(
                         p > 0.0,
                         "config {config} {}: coverage hole (f cos = {fc})",
-                        sampler.name()
+                        name
                     );
                 }
             }
@@ -559,16 +595,17 @@ fn random_configurations_stay_finite_and_consistent() {
 /// the union of caps; outside every cap the footprint part is zero). Tolerance 1e-3.
 #[test]
 fn footprint_pdf_integrates_to_one() {
-    let map = empty_map();
+    let frame = Frame::from_z(Vec3::Z);
+    let mix = ChannelMix([1.0, 0.0, 0.0]);
     for c in configs() {
         for rule in [RadiusRule::SolidAngle, RadiusRule::Literal] {
-            let fp = FootprintSampler::new(&map, params(rule), 1.0, 100.0);
-            let mut state = GuideState::default();
-            fp.prepare_with(Frame::from_z(Vec3::Z), &c.particles, &mut state);
-            if !state.guided {
+            let params = params(rule);
+            let particles = guide_particles(&frame, &c.particles, &params);
+            let dist = FootprintDistribution::build(&frame, &particles, &params);
+            let caps = &dist.caps;
+            if caps.is_empty() {
                 continue;
             }
-            let caps = &state.footprint.caps;
             let n = 300;
             let mut integral = 0.0f64;
             for cap in caps {
@@ -582,21 +619,17 @@ fn footprint_pdf_integrates_to_one() {
                         let d = (cap.dir.as_dvec3() * (1.0 - omc)
                             + (t1.as_dvec3() * phi.cos() + t2.as_dvec3() * phi.sin()) * sin)
                             .as_vec3();
-                        let cover = caps
-                            .iter()
-                            .filter(|k| {
-                                d.dot(k.dir) > 0.0 && d.cross(k.dir).length_squared() < k.r2
-                            })
-                            .count();
+                        let cover = caps.iter().filter(|k| k.contains(d)).count();
                         if cover > 0 {
-                            integral += state.footprint.pdf(d) as f64 * omega
-                                / (n * n) as f64
-                                / cover as f64;
+                            integral +=
+                                dist.pdf(&mix, d) as f64 * omega / (n * n) as f64 / cover as f64;
                         }
                     }
                 }
             }
-            let expect: f64 = caps.iter().map(|k| k.prob as f64).sum();
+            let expect: f64 = (0..caps.len())
+                .map(|i| dist.probability(&mix, i) as f64)
+                .sum();
             eprintln!(
                 "{} {}: ∫ p_fp = {integral:.6} (cap probabilities sum to {expect:.6})",
                 c.name,
@@ -630,8 +663,8 @@ fn cap_solid_angle_is_accurate_in_f32() {
 /// BSDF, in sampling and pdf alike, and count the fallback.
 #[test]
 fn too_few_particles_fall_back_to_the_bsdf() {
-    let particles: Vec<footprint::particle_map::ParticleInput> = (0..30)
-        .map(|i| footprint::particle_map::ParticleInput {
+    let particles: Vec<footprint::guide::particle_map::ParticleInput> = (0..30)
+        .map(|i| footprint::guide::particle_map::ParticleInput {
             position: Vec3::new(0.01 * i as f32, 0.0, 0.0),
             dir: dir(30.0, 12.0 * i as f32).normalize(),
             normal: Vec3::Z,
@@ -649,22 +682,26 @@ fn too_few_particles_fall_back_to_the_bsdf() {
         mode: TransportMode::Radiance,
         throughput: Rgb::ONE,
     };
+    let per_event = |k_p: usize| GuidedSampler {
+        source: GuideSource::PerEvent {
+            map: &map,
+            guide: &FootprintGuide,
+            max_dist: 1.0,
+        },
+        params: GuideParams {
+            k_p,
+            ..GuideParams::default()
+        },
+        soft_glossy_max: 100.0,
+    };
     for k_p in [10usize, 50] {
-        let fp = FootprintSampler::new(
-            &map,
-            GuideParams {
-                k_p,
-                ..GuideParams::default()
-            },
-            1.0,
-            100.0,
-        );
-        let mut state = GuideState::default();
+        let fp = per_event(k_p);
+        let mut state = SamplerState::default();
         fp.prepare(&at, &mut state);
-        assert_eq!(state.guided, k_p <= 30, "k_p = {k_p}");
+        assert_eq!(state.guided(), k_p <= 30, "k_p = {k_p}");
         assert_eq!(state.fallbacks, (k_p > 30) as u64);
         let d = dir(40.0, 100.0);
-        if !state.guided {
+        if !state.guided() {
             assert_eq!(fp.pdf(&at, &state, d), bsdf.pdf(at.wo, d));
         } else {
             assert_ne!(
@@ -679,16 +716,8 @@ fn too_few_particles_fall_back_to_the_bsdf() {
         bsdf: &mirror,
         ..at
     };
-    let fp = FootprintSampler::new(
-        &map,
-        GuideParams {
-            k_p: 10,
-            ..GuideParams::default()
-        },
-        1.0,
-        100.0,
-    );
-    let mut state = GuideState::default();
+    let fp = per_event(10);
+    let mut state = SamplerState::default();
     fp.prepare(&at, &mut state);
-    assert!(!state.guided);
+    assert!(!state.guided());
 }

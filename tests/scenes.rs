@@ -5,18 +5,17 @@
 mod common;
 
 use common::scene_path;
-use footprint::effects::Effects;
-use footprint::loader::load_scene;
-use footprint_integrators::{Integrator, RenderOptions, render};
+use footprint::scene::effects::Effects;
+use footprint::scene::load::load_scene;
+use footprint_integrators::{Method, RenderOptions, render};
 
-fn opts(integrator: Integrator, spp: u32, seed: u64) -> RenderOptions {
+fn opts(integrator: &str, spp: u32, seed: u64) -> RenderOptions {
     RenderOptions {
-        integrator,
+        method: Method::from_names(integrator, "bsdf").unwrap(),
         spp,
         time: None,
         max_depth: 12,
         seed,
-        progress: false,
         ..Default::default()
     }
 }
@@ -26,7 +25,7 @@ fn no_invalid_pixel_in_any_bundled_scene() {
     for name in ["cornell", "door", "desk", "furnace"] {
         let mut scene = load_scene(&scene_path(name)).unwrap();
         scene.camera = scene.camera.with_resolution(64, 64).unwrap();
-        for integrator in [Integrator::Pt, Integrator::Lt] {
+        for integrator in ["pt", "lt"] {
             let r = render(&scene, &opts(integrator, 16, 3), |_| {});
             assert!(r.image.all_valid(), "{name} {integrator:?}: invalid pixel");
             assert_eq!(
@@ -99,7 +98,7 @@ fn effect_analysis_is_right_for_each_scene() {
 fn equal_seeds_give_equal_images_whatever_the_thread_count() {
     let mut scene = load_scene(&scene_path("cornell")).unwrap();
     scene.camera = scene.camera.with_resolution(48, 40).unwrap();
-    for integrator in [Integrator::Pt, Integrator::Lt] {
+    for integrator in ["pt", "lt"] {
         let run = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)

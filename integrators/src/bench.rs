@@ -2,17 +2,22 @@
 //! `cornell`, each measured for a fixed time on all threads.
 
 use anyhow::Result;
-use footprint::geometry::spawn_origin;
-use footprint::loader::load_scene;
 use footprint::rng::Rng;
 use footprint::sampling::sample_uniform_sphere;
-use footprint_integrators::{Integrator, RenderOptions, render};
+use footprint::scene::Scene;
+use footprint::scene::geometry::spawn_origin;
+use footprint::scene::load::load_scene;
+use footprint_integrators::maps::Guidance;
+use footprint_integrators::passes::{PassSettings, light_pass, view_pass};
+use footprint_integrators::{Method, RenderOptions, render};
 use glam::Vec2;
 use rayon::prelude::*;
 use std::path::Path;
 use std::time::Instant;
 
-pub fn run(scenes: &Path, seconds: f64) -> Result<()> {
+/// Runs every measurement; `extra` is a scene (e.g. Veach Ajar) whose guided path
+/// throughput is measured next to door's.
+pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Result<()> {
     let threads = rayon::current_num_threads();
     println!("footprint bench: {threads} threads, {seconds} s per measurement");
 
@@ -55,8 +60,8 @@ pub fn run(scenes: &Path, seconds: f64) -> Result<()> {
     );
 
     // ---- Particle maps: build time, and k = 50 queries on door's maps ----
-    use footprint::particle_map::{MapKind, ParticleMap};
-    use footprint_integrators::passes::{PassSettings, light_pass, view_pass};
+    use footprint::guide::particle_map::{MapKind, ParticleMap};
+    let bsdf = footprint::guide::sampler::GuidedSampler::bsdf();
     for paths in [50_000usize, 500_000] {
         let s = PassSettings {
             paths,
@@ -64,7 +69,7 @@ pub fn run(scenes: &Path, seconds: f64) -> Result<()> {
             seed: 1,
             soft_glossy_max: door.maps.soft_glossy_max,
         };
-        let pass = light_pass(&door, &s);
+        let pass = light_pass(&door, &s, &bsdf);
         let t = Instant::now();
         let map = ParticleMap::build(MapKind::Photons, &pass.particles);
         println!(
@@ -83,8 +88,8 @@ pub fn run(scenes: &Path, seconds: f64) -> Result<()> {
         soft_glossy_max: door.maps.soft_glossy_max,
     };
     for (kind, pass) in [
-        (MapKind::Photons, light_pass(&door, &s)),
-        (MapKind::Importons, view_pass(&door, &s)),
+        (MapKind::Photons, light_pass(&door, &s, &bsdf)),
+        (MapKind::Importons, view_pass(&door, &s, &bsdf)),
     ] {
         let map = ParticleMap::build(kind, &pass.particles);
         // Query points: where camera rays hit, the points a guided path tracer asks about.
@@ -124,19 +129,8 @@ pub fn run(scenes: &Path, seconds: f64) -> Result<()> {
     // ---- Direction samplers: cost of one scattering event, single thread ----
     {
         use footprint::bsdf::TransportMode;
-        use footprint::direction_sampler::{
-            BsdfSampler, DirectionSampler, GuideParams, GuideState, ScatterPoint,
-        };
-        use footprint::footprint_sampler::FootprintSampler;
-        use footprint::grid_sampler::GridSampler;
-        let s = PassSettings {
-            paths: door.maps.photons,
-            max_depth: door.settings.max_depth,
-            seed: 1,
-            soft_glossy_max: door.maps.soft_glossy_max,
-        };
-        let map = ParticleMap::build(MapKind::Importons, &view_pass(&door, &s).particles);
-        let hits: Vec<(footprint::geometry::SurfaceHit, glam::Vec3)> = (0..2000u64)
+        use footprint::guide::sampler::{SamplerState, ScatterPoint};
+        let hits: Vec<(footprint::scene::geometry::SurfaceHit, glam::Vec3)> = (0..2000u64)
             .filter_map(|i| {
                 let mut rng = Rng::new(5, 9, i);
                 let raster = rng.uniform2() * Vec2::new(cam.width as f32, cam.height as f32);
@@ -157,33 +151,29 @@ pub fn run(scenes: &Path, seconds: f64) -> Result<()> {
                 throughput: footprint::Rgb::ONE,
             })
             .collect();
-        let params = GuideParams::default();
-        let fp = FootprintSampler::new(&map, params.clone(), max_dist, door.maps.soft_glossy_max);
-        let grid = GridSampler::new(&map, params.clone(), max_dist, door.maps.soft_glossy_max);
-        let samplers: [&dyn DirectionSampler; 3] = [&BsdfSampler, &grid, &fp];
-        let mut rng = Rng::new(1, 2, 3);
-        let mut buf = Vec::new();
-        let reps = 5;
-        let t = Instant::now();
-        for _ in 0..reps {
-            for at in &points {
-                std::hint::black_box(map.query(
-                    at.p,
-                    at.side_normal(),
-                    params.k_p,
-                    max_dist,
-                    |nb| at.contribution(nb.dir, nb.weight),
-                    &mut buf,
-                ));
-            }
-        }
-        let query_ns = t.elapsed().as_nanos() as f64 / (reps * hits.len()) as f64;
-        println!(
-            "door importance map: {:.0} ns per k=50 query with contributions (single thread)",
-            query_ns
-        );
-        for sampler in samplers {
-            let mut state = GuideState::default();
+        let pass = PassSettings {
+            paths: 0,
+            max_depth: door.settings.max_depth,
+            seed: 1,
+            soft_glossy_max: door.maps.soft_glossy_max,
+        };
+        for (method, cache) in [
+            ("lt-bsdf", false),
+            ("lt-grid", false),
+            ("lt-footprint", false),
+            ("lt-grid", true),
+            ("lt-footprint", true),
+        ] {
+            let method = Method::parse(method).map_err(anyhow::Error::msg)?;
+            let params = footprint::settings::GuideParams {
+                cache,
+                ..door.guide.clone()
+            };
+            let g = Guidance::build(&door, &method, &params, &pass, &|| None);
+            let sampler = g.light_sampler(&door, &method, &params);
+            let mut rng = Rng::new(1, 2, 3);
+            let mut state = SamplerState::default();
+            let reps = if cache || !method.guided() { 200 } else { 5 };
             let (mut t_prep, mut t_sp) = (0.0f64, 0.0f64);
             for _ in 0..reps {
                 for at in &points {
@@ -200,20 +190,51 @@ pub fn run(scenes: &Path, seconds: f64) -> Result<()> {
             }
             let n = (reps * hits.len()) as f64;
             println!(
-                "{:>9} sampler: prepare (query and build) {:.0} ns, sample + pdf {:.0} ns, per scattering event (single thread; {} of {} guided)",
-                sampler.name(),
+                "{:>9} guide, {}: prepare {:.0} ns, sample + pdf {:.0} ns per scattering event (single thread; {} of {} events at guiding surfaces guided)",
+                method.guide.name(),
+                if !method.guided() {
+                    "no map"
+                } else if cache {
+                    "cached (region lookup)"
+                } else {
+                    "per event (query and build)"
+                },
                 t_prep / n * 1e9,
                 t_sp / n * 1e9,
-                state.prepared - state.fallbacks,
-                state.prepared
+                state.prepared_events - state.fallbacks,
+                state.prepared_events
+            );
+        }
+    }
+
+    // ---- Guided path throughput against unguided, map passes and caches excluded ----
+    let door_path = scenes.join("door/door.toml");
+    let mut throughput_scenes = vec![(door_path.as_path(), &door)];
+    throughput_scenes.extend(extra);
+    for (path, sc) in throughput_scenes {
+        for (unguided, guided) in [("pt-bsdf", "pt-footprint"), ("lt-bsdf", "lt-footprint")] {
+            let mut rate = [0.0f64; 2];
+            for (k, m) in [unguided, guided].iter().enumerate() {
+                let mut opts = RenderOptions::from_scene(sc).map_err(anyhow::Error::msg)?;
+                opts.method = Method::parse(m).map_err(anyhow::Error::msg)?;
+                opts.time = Some(seconds);
+                let r = render(sc, &opts, |_| {});
+                rate[k] = r.paths as f64 / r.timings.tracing.as_secs_f64();
+            }
+            println!(
+                "{}: {unguided} {:.3} M paths/s, {guided} {:.3} M paths/s (cached): ratio {:.2}",
+                path.display(),
+                rate[0] / 1e6,
+                rate[1] / 1e6,
+                rate[1] / rate[0]
             );
         }
     }
 
     // ---- Path samples on cornell ----
     let cornell = load_scene(&scenes.join("cornell/cornell.toml"))?;
-    let mut opts = RenderOptions::from_scene(&cornell);
-    opts.integrator = Integrator::Pt;
+    let mut opts = RenderOptions::from_scene(&cornell).map_err(anyhow::Error::msg)?;
+    opts.method = Method::default();
     opts.time = Some(seconds);
     let r = render(&cornell, &opts, |_| {});
     println!(

@@ -11,10 +11,11 @@
 //! * spots (the paper's word, fireflies): pixels whose luminance error exceeds
 //!   [`SPOT_FACTOR`] times the reference luminance plus 1% of the reference's mean.
 
-use crate::render::{Guide, Integrator, RenderOptions, render};
+use crate::method::Method;
+use crate::render::{RenderOptions, render};
 use anyhow::{Context, Result, bail};
 use footprint::film::Image;
-use footprint::image_io::{read_exr, write_exr, write_png};
+use footprint::film::image_io::{read_exr, write_exr, write_png};
 use footprint::math::luminance;
 use footprint::scene::Scene;
 use std::fmt::Write as _;
@@ -61,48 +62,12 @@ pub fn spots(x: &Image, r: &Image) -> usize {
         .count()
 }
 
-/// A method: an integrator with a direction sampler.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Method {
-    pub integrator: Integrator,
-    pub guide: Guide,
-}
-
-impl Method {
-    pub fn name(&self) -> String {
-        format!("{}-{}", self.integrator.name(), self.guide.name())
-    }
-
-    pub fn parse(s: &str) -> Option<Self> {
-        let (i, g) = s.split_once('-')?;
-        Some(Method {
-            integrator: Integrator::parse(i)?,
-            guide: Guide::parse(g)?,
-        })
-    }
-
-    /// Path and light tracing with each guide, and the combined image with footprints.
-    pub fn all() -> Vec<Method> {
-        let mut v = Vec::new();
-        for integrator in [Integrator::Pt, Integrator::Lt] {
-            for guide in [Guide::Bsdf, Guide::Grid, Guide::Footprint] {
-                v.push(Method { integrator, guide });
-            }
-        }
-        v.push(Method {
-            integrator: Integrator::Combined,
-            guide: Guide::Footprint,
-        });
-        v
-    }
-}
-
 /// One curve of the comparison: a method, possibly with changed parameters (a sweep).
 #[derive(Clone, Debug)]
 pub struct Variant {
     pub label: String,
     pub opts: RenderOptions,
-    pub maps: footprint::scene::MapSettings,
+    pub maps: footprint::settings::MapSettings,
 }
 
 /// Settings of a comparison.
@@ -119,10 +84,11 @@ pub struct CompareSettings {
     pub seed: u64,
 }
 
-/// One measured point.
-#[derive(Clone, Debug)]
+/// One measured point (a row of `metrics.csv` and `metrics.json`).
+#[derive(Clone, Debug, serde::Serialize)]
 pub struct Row {
     pub method: String,
+    #[serde(rename = "time_budget_s")]
     pub time_budget: f64,
     pub seconds: f64,
     pub map_seconds: f64,
@@ -136,16 +102,10 @@ pub struct Row {
 /// A short text that identifies what a reference was rendered from: the scene files'
 /// contents, the resolution, depth and reference settings.
 pub fn reference_key(scene_path: &Path, scene: &Scene, spp: u32, max_depth: u32) -> Result<String> {
-    let mut h: u64 = 0xcbf29ce484222325;
-    let mut eat = |bytes: &[u8]| {
-        for b in bytes {
-            h ^= *b as u64;
-            h = h.wrapping_mul(0x100000001b3);
-        }
-    };
+    let mut h = blake3::Hasher::new();
     let text = std::fs::read(scene_path)
         .with_context(|| format!("cannot read {}", scene_path.display()))?;
-    eat(&text);
+    h.update(&text);
     // Every file the scene names (meshes, their materials, textures), by content: any quoted
     // string (double or single quotes) that is a file beside the scene, in TOML
     // (`file = "x.obj"`) as in Mitsuba XML (`value="models/x.obj"`).
@@ -161,17 +121,19 @@ pub fn reference_key(scene_path: &Path, scene: &Scene, spp: u32, max_depth: u32)
         let p = dir.join(quoted);
         if p.is_file() {
             if let Ok(bytes) = std::fs::read(&p) {
-                eat(&bytes);
+                h.update(&bytes);
             }
             if let Ok(mtl) = std::fs::read(p.with_extension("mtl")) {
-                eat(&mtl);
+                h.update(&mtl);
             }
         }
     }
     // Parameters given on the command line (`-D`).
-    eat(scene.source_params.as_bytes());
+    h.update(scene.source_params.as_bytes());
+    let hash = h.finalize().to_hex();
     Ok(format!(
-        "scene={h:016x} res={}x{} spp={spp} max_depth={max_depth} method=combined-bsdf v{}",
+        "scene={} res={}x{} spp={spp} max_depth={max_depth} method=combined-bsdf v{}",
+        &hash[..16],
         scene.camera.width,
         scene.camera.height,
         env!("CARGO_PKG_VERSION")
@@ -180,7 +142,7 @@ pub fn reference_key(scene_path: &Path, scene: &Scene, spp: u32, max_depth: u32)
 
 /// Reads the key a cached reference was written with.
 fn cached_key(path: &Path) -> Option<String> {
-    footprint::image_io::read_exr_text_attribute(path, "footprint/reference_key")
+    footprint::film::image_io::read_exr_text_attribute(path, "footprint/reference_key")
 }
 
 /// The reference: `given`, or the cache in `cache_dir` (default: the scene's folder) when its
@@ -238,8 +200,7 @@ pub fn reference(
         "rendering the reference: combined image, BSDF sampling, {spp} spp"
     ));
     let opts = RenderOptions {
-        integrator: Integrator::Combined,
-        guide: Guide::Bsdf,
+        method: Method::from_names("combined", "bsdf").map_err(anyhow::Error::msg)?,
         spp,
         max_depth,
         seed: 0x5eed,
@@ -310,88 +271,41 @@ fn preview_exposure(r: &Image) -> f32 {
     (0.18 / m).log2()
 }
 
-impl Row {
-    /// Every field as `(name, value)`, formatted once for both the CSV and the JSON table.
-    fn fields(&self) -> [(&'static str, String); 9] {
-        [
-            ("method", format!("\"{}\"", self.method)),
-            ("time_budget_s", format!("{}", self.time_budget)),
-            ("seconds", format!("{:.4}", self.seconds)),
-            ("map_seconds", format!("{:.4}", self.map_seconds)),
-            ("tracing_seconds", format!("{:.4}", self.tracing_seconds)),
-            ("spp", format!("{}", self.spp)),
-            ("rel_mse", format!("{:.6e}", self.rel_mse)),
-            ("mae", format!("{:.6e}", self.mae)),
-            ("spots", format!("{}", self.spots)),
-        ]
+fn csv(rows: &[Row]) -> Result<String> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    for r in rows {
+        w.serialize(r)?;
     }
+    Ok(String::from_utf8(
+        w.into_inner().map_err(|e| anyhow::anyhow!("{e}"))?,
+    )?)
 }
 
-fn csv(rows: &[Row]) -> String {
-    let Some(first) = rows.first() else {
-        return String::new();
-    };
-    let mut s = first
-        .fields()
-        .iter()
-        .map(|f| f.0)
-        .collect::<Vec<_>>()
-        .join(",")
-        + "\n";
-    for r in rows {
-        let values: Vec<String> = r
-            .fields()
-            .into_iter()
-            .map(|(_, v)| v.trim_matches('"').to_string())
-            .collect();
-        s += &(values.join(",") + "\n");
-    }
-    s
+/// A method's line of the summary: the log-log slope of its error against time and the
+/// time it needs to reach the target error.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct MethodSummary {
+    pub method: String,
+    pub slope: Option<f64>,
+    pub time_to_target_s: Option<f64>,
 }
 
 fn json(
     scene: &str,
     reference: &str,
     rows: &[Row],
-    summary: &[(String, Option<f64>, Option<f64>)],
+    summary: &[MethodSummary],
     target: f64,
-) -> String {
-    let esc = |s: &str| s.replace('\\', "\\\\").replace('"', "\\\"");
-    let num = |v: Option<f64>| {
-        v.filter(|x| x.is_finite())
-            .map(|x| format!("{x:.6e}"))
-            .unwrap_or("null".into())
-    };
-    let mut s = format!(
-        "{{\n  \"scene\": \"{}\",\n  \"reference\": \"{}\",\n  \"spot_factor\": {SPOT_FACTOR},\n  \"target_rel_mse\": {target:.6e},\n  \"rows\": [\n",
-        esc(scene),
-        esc(reference)
-    );
-    for (i, r) in rows.iter().enumerate() {
-        let fields: Vec<String> = r
-            .fields()
-            .iter()
-            .map(|(k, v)| format!("\"{k}\": {v}"))
-            .collect();
-        let _ = writeln!(
-            s,
-            "    {{{}}}{}",
-            fields.join(", "),
-            if i + 1 < rows.len() { "," } else { "" }
-        );
-    }
-    s += "  ],\n  \"methods\": [\n";
-    for (i, (m, slope, t)) in summary.iter().enumerate() {
-        let _ = write!(
-            s,
-            "    {{\"method\": \"{m}\", \"slope\": {}, \"time_to_target_s\": {}}}{}\n",
-            num(*slope),
-            num(*t),
-            if i + 1 < summary.len() { "," } else { "" }
-        );
-    }
-    s += "  ]\n}\n";
-    s
+) -> Result<String> {
+    let report = serde_json::json!({
+        "scene": scene,
+        "reference": reference,
+        "spot_factor": SPOT_FACTOR,
+        "target_rel_mse": target,
+        "rows": rows,
+        "methods": summary,
+    });
+    Ok(serde_json::to_string_pretty(&report)? + "\n")
 }
 
 /// A log-log plot of error against time, one polyline per method.
@@ -560,7 +474,7 @@ pub fn run(
                 method: v.label.clone(),
                 time_budget: t,
                 seconds: r.elapsed.as_secs_f64(),
-                map_seconds: (tm.view_pass + tm.light_pass + tm.map_builds).as_secs_f64(),
+                map_seconds: tm.maps.total().as_secs_f64(),
                 tracing_seconds: tm.tracing.as_secs_f64(),
                 spp: r.passes,
                 rel_mse: rel_mse(&r.image, &reference),
@@ -587,7 +501,7 @@ pub fn run(
         .collect();
     finals.sort_by(|a, b| a.total_cmp(b));
     let target = finals.get(finals.len() / 2).copied().unwrap_or(0.0);
-    let summary: Vec<(String, Option<f64>, Option<f64>)> = names
+    let summary: Vec<MethodSummary> = names
         .iter()
         .map(|m| {
             let pts: Vec<(f64, f64)> = rows
@@ -595,10 +509,14 @@ pub fn run(
                 .filter(|r| &r.method == m)
                 .map(|r| (r.seconds, r.rel_mse))
                 .collect();
-            (m.clone(), log_log_slope(&pts), time_to_reach(&pts, target))
+            MethodSummary {
+                method: m.clone(),
+                slope: log_log_slope(&pts),
+                time_to_target_s: time_to_reach(&pts, target),
+            }
         })
         .collect();
-    std::fs::write(s.out.join("metrics.csv"), csv(&rows))?;
+    std::fs::write(s.out.join("metrics.csv"), csv(&rows)?)?;
     std::fs::write(
         s.out.join("metrics.json"),
         json(
@@ -607,7 +525,7 @@ pub fn run(
             &rows,
             &summary,
             target,
-        ),
+        )?,
     )?;
     std::fs::write(
         s.out.join("convergence.svg"),
@@ -634,7 +552,7 @@ fn html(
     scene_path: &Path,
     ref_source: &str,
     rows: &[Row],
-    summary: &[(String, Option<f64>, Option<f64>)],
+    summary: &[MethodSummary],
     names: &[String],
     s: &CompareSettings,
     target: f64,
@@ -666,7 +584,13 @@ fn html(
         refsrc = ref_source
     );
     out += "<h2>Equal time</h2>\n<table><tr><th>method</th><th>spp</th><th>seconds</th><th>maps (s)</th><th>relative MSE</th><th>MAE</th><th>spots</th><th>slope</th><th>time to reach target (s)</th></tr>\n";
-    for (m, slope, tt) in summary {
+    for MethodSummary {
+        method: m,
+        slope,
+        time_to_target_s: tt,
+    } in summary
+    {
+        let (slope, tt) = (*slope, *tt);
         if let Some(r) = rows
             .iter()
             .find(|r| &r.method == m && r.time_budget == t_eq)
@@ -685,8 +609,8 @@ fn html(
                 r.rel_mse,
                 r.mae,
                 r.spots,
-                f(*slope),
-                f(*tt)
+                f(slope),
+                f(tt)
             );
         }
     }

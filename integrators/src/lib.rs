@@ -1,20 +1,24 @@
 //! Integrators of footprint and the driver that runs them over the film.
 //!
-//! * [`path_tracer`]: paths from the camera with next-event estimation and MIS;
-//! * [`compare`]: equal-time comparisons, error against time, parameter sweeps;
-//! * [`light_tracer`]: paths from the lights, every non-specular vertex connected to the
-//!   pinhole camera and splatted onto the film;
-//! * [`maps`]: building the maps and their pictures;
-//! * [`mis`]: the combined image's weights over path tracing and light tracing;
+//! * [`integrator`]: the `Integrator` trait and its registry: path tracing, light tracing,
+//!   and the combined image;
+//! * [`walk`]: the one path loop (vertex, Russian roulette, spawn) that the integrators and
+//!   both particle passes share;
+//! * [`mis`]: the combined image's weights, kept as running quantities per subpath;
 //! * [`passes`]: the light pass (photon map) and the view pass (importance map);
-//! * [`render`]: passes, threads, time budgets, progress, and the run summary.
+//! * [`maps`]: building the maps and guide caches a method needs, and pictures of the maps;
+//! * [`method`]: a method (integrator x guide), resolved from names in one place;
+//! * [`render`]: passes, threads, time budgets, progress, and the run summary;
+//! * [`compare`]: equal-time comparisons, error against time, parameter sweeps.
 
 pub mod compare;
-pub mod light_tracer;
+pub mod integrator;
 pub mod maps;
+pub mod method;
 pub mod mis;
 pub mod passes;
-pub mod path_tracer;
 pub mod render;
+pub mod walk;
 
-pub use render::{Guide, Integrator, RenderOptions, RenderResult, render, render_with};
+pub use method::Method;
+pub use render::{RenderOptions, RenderResult, render, render_with};

@@ -1,10 +1,14 @@
 //! The `footprint` command line.
 
 use anyhow::{Context, Result, bail};
-use clap::{Parser, Subcommand, ValueEnum};
-use footprint::image_io::{write_exr, write_png};
+use clap::builder::{PossibleValue, PossibleValuesParser};
+use clap::{Parser, Subcommand};
+use footprint::film::image_io::{write_exr, write_png};
+use footprint::guide::GUIDES;
 use footprint::scene::Scene;
-use footprint_integrators::{Integrator, RenderOptions};
+use footprint::settings::RadiusRule;
+use footprint_integrators::integrator::INTEGRATORS;
+use footprint_integrators::{Method, RenderOptions};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -36,40 +40,27 @@ struct Cli {
     command: Command,
 }
 
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-enum IntegratorArg {
-    /// Path tracing with next-event estimation and MIS
-    Pt,
-    /// Light tracing: paths from the lights connected to the camera
-    Lt,
-    /// Both, and one image combining them by multiple importance sampling
-    Combined,
+/// `--integrator`'s values: the registered integrators, with their help lines.
+fn integrator_values() -> PossibleValuesParser {
+    PossibleValuesParser::new(
+        INTEGRATORS
+            .iter()
+            .map(|i| PossibleValue::new(i.name()).help(i.about())),
+    )
 }
 
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-enum GuideArg {
-    /// The BSDF's own sampling
-    Bsdf,
-    /// Classic photon-map importance sampling on a hemisphere grid (Jensen 1995)
-    Grid,
-    /// Hemispherical particle footprints (Hey & Purgathofer 2001)
-    Footprint,
+/// `--guide`'s values: the registered guides, with their help lines.
+fn guide_values() -> PossibleValuesParser {
+    PossibleValuesParser::new(
+        GUIDES
+            .iter()
+            .map(|g| PossibleValue::new(g.name()).help(g.about())),
+    )
 }
 
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-enum RadiusRuleArg {
-    /// The cap's solid angle is k_r over the directional density (particles per steradian)
-    SolidAngle,
-    /// Eq. 7 as printed: radius k_r over the density g/ω
-    Literal,
-}
-
-/// Direction-sampler parameters (paper defaults).
+/// Direction-sampler parameters (paper defaults) and the guide cache.
 #[derive(clap::Args, Debug, Clone)]
-struct GuideArgs {
-    /// Direction sampler [default: the scene's render.guide, else bsdf]
-    #[arg(long, value_enum)]
-    guide: Option<GuideArg>,
+struct GuideParamArgs {
     /// Particles per query, k_p [default: the scene's guide.k_p, else 50]
     #[arg(long)]
     k_p: Option<usize>,
@@ -84,24 +75,25 @@ struct GuideArgs {
     p_bsdf: Option<f32>,
     /// Footprint radius rule [default: guide.radius_rule, else solid-angle]
     #[arg(long, value_enum)]
-    radius_rule: Option<RadiusRuleArg>,
+    radius_rule: Option<RadiusRule>,
     /// Side of the classic sampler's grid per hemisphere [default: guide.grid, else 8]
     #[arg(long)]
     grid: Option<usize>,
+    /// Prepare guide distributions once per region (on) or at every scattering event as
+    /// the paper does (off) [default: guide.cache, else on]
+    #[arg(long, value_parser = ["on", "off"])]
+    guide_cache: Option<String>,
+    /// Most particles per cached region [default: guide.region_particles, else 400]
+    #[arg(long)]
+    region_particles: Option<usize>,
+    /// Most scattering points of the other pass per cached region [default:
+    /// guide.region_seeds, else 256]
+    #[arg(long)]
+    region_seeds: Option<usize>,
 }
 
-impl GuideArgs {
-    fn apply(&self, opts: &mut RenderOptions) -> Result<()> {
-        use footprint::direction_sampler::RadiusRule;
-        use footprint_integrators::Guide;
-        if let Some(g) = self.guide {
-            opts.guide = match g {
-                GuideArg::Bsdf => Guide::Bsdf,
-                GuideArg::Grid => Guide::Grid,
-                GuideArg::Footprint => Guide::Footprint,
-            };
-        }
-        let p = &mut opts.guide_params;
+impl GuideParamArgs {
+    fn apply(&self, p: &mut footprint::settings::GuideParams) -> Result<()> {
         if let Some(v) = self.k_p {
             p.k_p = v;
         }
@@ -115,16 +107,21 @@ impl GuideArgs {
             p.p_bsdf = v;
         }
         if let Some(v) = self.radius_rule {
-            p.radius_rule = match v {
-                RadiusRuleArg::SolidAngle => RadiusRule::SolidAngle,
-                RadiusRuleArg::Literal => RadiusRule::Literal,
-            };
+            p.radius_rule = v;
         }
         if let Some(v) = self.grid {
             p.grid_side = v;
         }
-        p.validate()
-            .map_err(|e| anyhow::anyhow!("--{}", e.replace('_', "-")))
+        if let Some(v) = &self.guide_cache {
+            p.cache = v == "on";
+        }
+        if let Some(v) = self.region_particles {
+            p.region_particles = v;
+        }
+        if let Some(v) = self.region_seeds {
+            p.region_seeds = v;
+        }
+        p.validate().map_err(|e| anyhow::anyhow!(e.as_flag_error()))
     }
 }
 
@@ -135,8 +132,11 @@ enum Command {
         /// Scene file: footprint TOML (.toml) or Mitsuba 3 XML (.xml)
         scene: PathBuf,
         /// Integrator [default: the scene's render.integrator, else pt]
-        #[arg(long, value_enum)]
-        integrator: Option<IntegratorArg>,
+        #[arg(long, value_parser = integrator_values())]
+        integrator: Option<String>,
+        /// Direction sampler [default: the scene's render.guide, else bsdf]
+        #[arg(long, value_parser = guide_values())]
+        guide: Option<String>,
         /// Samples per pixel (pt) or light paths per pixel (lt) [default: the scene's render.spp, else 16]
         #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
         spp: Option<u32>,
@@ -163,7 +163,7 @@ enum Command {
         #[arg(long)]
         threads: Option<usize>,
         #[command(flatten)]
-        guide: GuideArgs,
+        params: GuideParamArgs,
         #[command(flatten)]
         maps: MapArgs,
         #[command(flatten)]
@@ -189,6 +189,8 @@ enum Command {
         /// Worker threads [default: all cores]
         #[arg(long)]
         threads: Option<usize>,
+        #[command(flatten)]
+        params: GuideParamArgs,
     },
     /// Compare methods at equal time (map passes included) against a reference: table, error
     /// against time, parameter sweeps, and an HTML page
@@ -235,7 +237,7 @@ enum Command {
         #[arg(long)]
         threads: Option<usize>,
         #[command(flatten)]
-        guide: GuideArgs,
+        params: GuideParamArgs,
         #[command(flatten)]
         maps: MapArgs,
         #[command(flatten)]
@@ -272,6 +274,12 @@ enum Command {
         /// Worker threads [default: all cores]
         #[arg(long)]
         threads: Option<usize>,
+        /// A further scene (TOML or Mitsuba XML, e.g. Veach Ajar with -D resx=128 -D
+        /// resy=72) whose guided path throughput is measured next to door's
+        #[arg(long)]
+        scene: Option<PathBuf>,
+        #[command(flatten)]
+        import: ImportArgs,
     },
 }
 
@@ -280,7 +288,7 @@ enum Command {
 struct ImportArgs {
     /// Set a Mitsuba XML parameter, overriding its <default> (repeatable), as Mitsuba's own
     /// -D: `-D resx=128 -D resy=72`
-    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = footprint::mitsuba::parse_define)]
+    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = footprint::scene::mitsuba::parse_define)]
     define: Vec<(String, String)>,
     /// Replace unsupported Mitsuba elements with documented stand-ins (listed on stderr)
     /// instead of stopping with an error
@@ -291,11 +299,11 @@ struct ImportArgs {
 impl ImportArgs {
     /// Loads the scene file with these flags; prints what a lenient import replaced.
     fn load(&self, path: &Path) -> Result<Scene> {
-        let opts = footprint::mitsuba::ImportOptions {
+        let opts = footprint::scene::mitsuba::ImportOptions {
             defines: self.define.clone(),
             lenient: self.lenient,
         };
-        let sc = footprint::loader::load_scene_with(path, &opts)?;
+        let sc = footprint::scene::load::load_scene_with(path, &opts)?;
         for n in &sc.import_notes {
             eprintln!("note: {n}");
         }
@@ -338,8 +346,7 @@ impl MapArgs {
         if let Some(v) = self.soft_glossy_max {
             m.soft_glossy_max = v;
         }
-        m.validate()
-            .map_err(|e| anyhow::anyhow!("--{}", e.replace('_', "-")))
+        m.validate().map_err(|e| anyhow::anyhow!(e.as_flag_error()))
     }
 }
 
@@ -416,6 +423,7 @@ fn run(cli: Cli) -> Result<()> {
             resolution,
             threads,
             guide,
+            params,
             maps,
             import,
         } => {
@@ -431,15 +439,14 @@ fn run(cli: Cli) -> Result<()> {
             let t0 = Instant::now();
             let sc = load_scene_with(&scene, &import, &maps, resolution)?;
             let load_time = t0.elapsed();
-            let mut opts = RenderOptions::from_scene(&sc);
+            let mut opts = RenderOptions::from_scene(&sc).map_err(anyhow::Error::msg)?;
             if let Some(i) = integrator {
-                opts.integrator = match i {
-                    IntegratorArg::Pt => Integrator::Pt,
-                    IntegratorArg::Lt => Integrator::Lt,
-                    IntegratorArg::Combined => Integrator::Combined,
-                };
+                opts.method.integrator = Method::integrator(&i).map_err(anyhow::Error::msg)?;
             }
-            guide.apply(&mut opts)?;
+            if let Some(g) = guide {
+                opts.method.guide = Method::guide(&g).map_err(anyhow::Error::msg)?;
+            }
+            params.apply(&mut opts.guide_params)?;
             if let Some(s) = spp {
                 opts.spp = s;
                 opts.time = None;
@@ -469,12 +476,15 @@ fn run(cli: Cli) -> Result<()> {
             max_depth,
             seed,
             threads,
+            params,
             import,
         } => {
             set_threads(threads)?;
             let mut sc = import.load(&scene)?;
             maps.apply(&mut sc)?;
-            maps_command(&sc, &out, max_depth, seed)
+            let mut guide = sc.guide.clone();
+            params.apply(&mut guide)?;
+            maps_command(&sc, &out, &guide, max_depth, seed)
         }
         Command::Compare {
             scene,
@@ -490,7 +500,7 @@ fn run(cli: Cli) -> Result<()> {
             max_depth,
             seed,
             threads,
-            guide,
+            params,
             maps,
             import,
         } => {
@@ -506,22 +516,19 @@ fn run(cli: Cli) -> Result<()> {
             {
                 bail!("--ladder must be positive, increasing times, got {ladder:?}");
             }
-            let mut base = RenderOptions::from_scene(&sc);
-            guide.apply(&mut base)?;
+            let mut base = RenderOptions::from_scene(&sc).map_err(anyhow::Error::msg)?;
+            params.apply(&mut base.guide_params)?;
             let max_depth = max_depth.unwrap_or(base.max_depth);
             let default_methods = if sweep.is_some() {
                 vec!["pt-footprint".to_string(), "lt-footprint".to_string()]
             } else {
-                footprint_integrators::compare::Method::all()
-                    .iter()
-                    .map(|m| m.name())
-                    .collect()
+                Method::all().iter().map(|m| m.name()).collect()
             };
             let methods = methods.unwrap_or(default_methods);
-            let mut parsed = Vec::new();
-            for m in &methods {
-                parsed.push(footprint_integrators::compare::Method::parse(m).ok_or_else(|| anyhow::anyhow!("--methods: unknown method '{m}' (expected INTEGRATOR-GUIDE, e.g. pt-footprint)"))?);
-            }
+            let parsed = methods
+                .iter()
+                .map(|m| Method::parse(m).map_err(|e| anyhow::anyhow!("--methods: {e}")))
+                .collect::<Result<Vec<_>>>()?;
             let variants = compare_variants(&parsed, &base, &sc, sweep.as_deref())?;
             let stem = scene
                 .file_stem()
@@ -565,8 +572,8 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Metrics { image, reference } => {
             use footprint_integrators::compare::{mae, rel_mse, spots};
-            let x = footprint::image_io::read_exr(&image)?;
-            let r = footprint::image_io::read_exr(&reference)?;
+            let x = footprint::film::image_io::read_exr(&image)?;
+            let r = footprint::film::image_io::read_exr(&reference)?;
             if (x.width, x.height) != (r.width, r.height) {
                 bail!(
                     "{} is {}x{}, the reference {}x{}",
@@ -587,7 +594,7 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Export { scene, out, import } => {
             let sc = import.load(&scene)?;
-            let notes = footprint::mitsuba::export::export(&sc, &scene, &out)?;
+            let notes = footprint::scene::mitsuba::export::export(&sc, &scene, &out)?;
             for n in &notes {
                 eprintln!("note: {n}");
             }
@@ -598,28 +605,37 @@ fn run(cli: Cli) -> Result<()> {
             scenes,
             seconds,
             threads,
+            scene,
+            import,
         } => {
             set_threads(threads)?;
             if !(seconds.is_finite() && seconds > 0.0) {
                 bail!("--seconds must be positive");
             }
-            bench::run(&scenes, seconds)
+            let extra = scene
+                .map(|p| import.load(&p).map(|sc| (p, sc)))
+                .transpose()?;
+            bench::run(
+                &scenes,
+                seconds,
+                extra.as_ref().map(|(p, s)| (p.as_path(), s)),
+            )
         }
     }
 }
 
 /// The curves of a comparison: each method once, or once per value of a swept parameter.
 fn compare_variants(
-    methods: &[footprint_integrators::compare::Method],
+    methods: &[Method],
     base: &RenderOptions,
     scene: &Scene,
     sweep: Option<&str>,
 ) -> Result<Vec<footprint_integrators::compare::Variant>> {
     use footprint_integrators::compare::Variant;
-    let make = |m: &footprint_integrators::compare::Method,
+    let make = |m: &Method,
                 label: String,
                 opts: RenderOptions,
-                maps: footprint::scene::MapSettings|
+                maps: footprint::settings::MapSettings|
      -> Result<Variant> {
         opts.guide_params
             .validate()
@@ -628,11 +644,7 @@ fn compare_variants(
             .map_err(|e| anyhow::anyhow!("--sweep: {e}"))?;
         Ok(Variant {
             label,
-            opts: RenderOptions {
-                integrator: m.integrator,
-                guide: m.guide,
-                ..opts
-            },
+            opts: RenderOptions { method: *m, ..opts },
             maps,
         })
     };
@@ -661,9 +673,11 @@ fn compare_variants(
                 "k_g" => opts.guide_params.k_g_side = num as usize,
                 "grid" => opts.guide_params.grid_side = num as usize,
                 "photons" => maps.photons = num as usize,
+                "region_particles" => opts.guide_params.region_particles = num as usize,
+                "region_seeds" => opts.guide_params.region_seeds = num as usize,
                 "importons" => maps.importons = num as usize,
                 other => bail!(
-                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, k_g, grid, photons or importons)"
+                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, k_g, grid, region_particles, region_seeds, photons or importons)"
                 ),
             }
             out.push(make(
@@ -680,35 +694,35 @@ fn compare_variants(
 fn maps_command(
     scene: &Scene,
     out: &Path,
+    params: &footprint::settings::GuideParams,
     max_depth: Option<u32>,
     seed: Option<u64>,
 ) -> Result<()> {
-    use footprint::particle_map::MapKind;
-    use footprint_integrators::maps::{build_map, picture};
+    use footprint_integrators::maps::{Guidance, picture};
     use footprint_integrators::passes::PassSettings;
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
-    let max_depth = max_depth.unwrap_or(scene.settings.max_depth);
-    let seed = seed.unwrap_or(scene.settings.seed);
+    let pass = PassSettings {
+        paths: 0,
+        max_depth: max_depth.unwrap_or(scene.settings.max_depth),
+        seed: seed.unwrap_or(scene.settings.seed),
+        soft_glossy_max: scene.maps.soft_glossy_max,
+    };
     println!(
         "maximum query distance {:.4} (scene units)",
         scene.map_max_dist()
     );
-    for (kind, paths, file) in [
-        (MapKind::Photons, scene.maps.photons, "photons.png"),
-        (MapKind::Importons, scene.maps.importons, "importons.png"),
-    ] {
-        let s = PassSettings {
-            paths,
-            max_depth,
-            seed,
-            soft_glossy_max: scene.maps.soft_glossy_max,
-        };
-        let built = build_map(scene, kind, &s, &heap_bytes);
-        println!("{}", built.summary());
-        let img = picture(scene, &built.pass.particles);
-        let path = out.join(file);
-        write_png(&path, &img, 0.0)?;
-        println!("  -> {}", path.display());
+    // Both maps, and their guide caches when the cache is on: what `combined-footprint` uses.
+    let method = Method::from_names("combined", "footprint").map_err(anyhow::Error::msg)?;
+    let g = Guidance::build(scene, &method, params, &pass, &heap_bytes);
+    for line in &g.summaries {
+        println!("{line}");
+    }
+    for (built, file) in [(&g.photons, "photons.png"), (&g.importons, "importons.png")] {
+        if let Some(b) = built {
+            let path = out.join(file);
+            write_png(&path, &picture(scene, &b.pass.particles), 0.0)?;
+            println!("  -> {}", path.display());
+        }
     }
     Ok(())
 }
@@ -716,7 +730,7 @@ fn maps_command(
 fn render_command(
     scene_path: &Path,
     scene: &Scene,
-    mut opts: RenderOptions,
+    opts: RenderOptions,
     out: &Path,
     exposure: f32,
     load_s: f64,
@@ -730,7 +744,6 @@ fn render_command(
         }
     }
     let terminal = std::io::stderr().is_terminal();
-    opts.progress = terminal;
     let cam = &scene.camera;
     let effects: Vec<&str> = scene
         .effects
@@ -768,7 +781,7 @@ fn render_command(
             )
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
         );
-        b.set_message(opts.integrator.name().to_string());
+        b.set_message(opts.method.name());
         Some(b)
     } else {
         None
@@ -795,13 +808,17 @@ fn render_command(
         ),
         (
             "footprint/integrator".to_string(),
-            opts.integrator.name().to_string(),
+            opts.method.integrator.name().to_string(),
         ),
-        ("footprint/guide".to_string(), opts.guide.name().to_string()),
+        (
+            "footprint/guide".to_string(),
+            opts.method.guide.name().to_string(),
+        ),
+        ("footprint/method".to_string(), opts.method.name()),
         (
             "footprint/guide_params".to_string(),
             format!(
-                "k_p={} k_g={}x{} k_r={} p_bsdf={} radius_rule={} grid={}x{} photons={} importons={} max_dist={}",
+                "k_p={} k_g={}x{} k_r={} p_bsdf={} radius_rule={} grid={}x{} cache={} region_particles={} region_seeds={} photons={} importons={} max_dist={}",
                 p.k_p,
                 p.k_g_side,
                 p.k_g_side,
@@ -810,6 +827,9 @@ fn render_command(
                 p.radius_rule.name(),
                 p.grid_side,
                 p.grid_side,
+                if p.cache { "on" } else { "off" },
+                p.region_particles,
+                p.region_seeds,
                 scene.maps.photons,
                 scene.maps.importons,
                 scene.map_max_dist()
@@ -825,10 +845,11 @@ fn render_command(
         (
             "footprint/time_split_s".to_string(),
             format!(
-                "view_pass={:.3} light_pass={:.3} map_builds={:.3} tracing={:.3}",
-                t.view_pass.as_secs_f64(),
-                t.light_pass.as_secs_f64(),
-                t.map_builds.as_secs_f64(),
+                "view_pass={:.3} light_pass={:.3} map_builds={:.3} cache_builds={:.3} tracing={:.3}",
+                t.maps.view_pass.as_secs_f64(),
+                t.maps.light_pass.as_secs_f64(),
+                t.maps.map_builds.as_secs_f64(),
+                t.maps.cache_builds.as_secs_f64(),
                 t.tracing.as_secs_f64()
             ),
         ),
@@ -846,7 +867,7 @@ fn render_command(
         for m in &result.maps {
             eprintln!("{m}");
         }
-        if opts.guide == footprint_integrators::Guide::Bsdf {
+        if !opts.method.guided() {
             eprintln!("maps: none built (BSDF sampling needs no particle map)");
         }
         let g = |name: &str, c: &footprint_integrators::render::GuideCounts| {
@@ -862,10 +883,11 @@ fn render_command(
         g("camera paths", &result.camera_guide);
         g("light paths", &result.light_guide);
         eprintln!(
-            "time: view pass {:.2} s, light pass {:.2} s, map builds {:.2} s, tracing {:.2} s",
-            t.view_pass.as_secs_f64(),
-            t.light_pass.as_secs_f64(),
-            t.map_builds.as_secs_f64(),
+            "time: view pass {:.2} s, light pass {:.2} s, map builds {:.2} s, cache builds {:.2} s, tracing {:.2} s",
+            t.maps.view_pass.as_secs_f64(),
+            t.maps.light_pass.as_secs_f64(),
+            t.maps.map_builds.as_secs_f64(),
+            t.maps.cache_builds.as_secs_f64(),
             t.tracing.as_secs_f64()
         );
     }
@@ -874,13 +896,13 @@ fn render_command(
     println!(
         "{}: {} ({}) {} spp {}x{} in {:.2} s (maps {:.2} s, {:.2} M paths/s), BSDF fallbacks {}/{}, max sample {:.4}, rejected {} -> {}, {}",
         scene_path.display(),
-        opts.integrator.name(),
-        opts.guide.name(),
+        opts.method.integrator.name(),
+        opts.method.guide.name(),
         result.passes,
         cam.width,
         cam.height,
         secs,
-        (t.view_pass + t.light_pass + t.map_builds).as_secs_f64(),
+        t.maps.total().as_secs_f64(),
         result.paths as f64 / t.tracing.as_secs_f64().max(1e-9) / 1e6,
         fallbacks,
         prepared,

@@ -1,13 +1,22 @@
-//! `footprint maps`: builds the photon map and the importance map of a scene and writes
-//! pictures of them seen from the camera (particles splatted as points coloured by their
-//! power or importance, as in the paper's figure 10), with counts, memory and times.
+//! The particle maps and guide caches a method needs (and only those), built before
+//! rendering, and pictures of the maps for `footprint maps`.
+//!
+//! A guided method needs the photon map when it traces camera paths and the importance map
+//! when it traces light paths (the paper's symmetry). With the guide cache on, each map's
+//! cache also needs the *other* pass's scattering points as region seeds, so both passes
+//! run whenever a cache is built.
 
+use crate::method::Method;
 use crate::passes::{PassOutput, PassSettings, light_pass, view_pass};
 use footprint::Rgb;
 use footprint::film::Image;
-use footprint::particle_map::{MapKind, ParticleInput, ParticleMap};
+use footprint::guide::cache::GuideCache;
+use footprint::guide::particle_map::{MapKind, ParticleInput, ParticleMap};
+use footprint::guide::sampler::{GuideSource, GuidedSampler};
 use footprint::scene::Scene;
+use footprint::settings::GuideParams;
 use rayon::prelude::*;
+use std::time::Duration;
 
 /// A built map with what it cost.
 pub struct BuiltMap {
@@ -36,18 +45,10 @@ impl BuiltMap {
     }
 }
 
-/// Runs a pass and builds its map; `measure` returns the heap bytes currently allocated
-/// (a counting allocator), so the map's own footprint is the difference around the build.
-pub fn build_map(
-    scene: &Scene,
-    kind: MapKind,
-    s: &PassSettings,
-    measure: &dyn Fn() -> Option<usize>,
-) -> BuiltMap {
-    let pass = match kind {
-        MapKind::Photons => light_pass(scene, s),
-        MapKind::Importons => view_pass(scene, s),
-    };
+/// Builds the map of a pass's particles; `measure` returns the heap bytes currently
+/// allocated (a counting allocator), so the map's own size is the difference around the
+/// build.
+pub fn build_map(kind: MapKind, pass: PassOutput, measure: &dyn Fn() -> Option<usize>) -> BuiltMap {
     let before = measure();
     let map = ParticleMap::build(kind, &pass.particles);
     let after = measure();
@@ -56,6 +57,155 @@ pub fn build_map(
         _ => None,
     };
     BuiltMap { map, pass, bytes }
+}
+
+/// Where the time before rendering went.
+#[derive(Clone, Debug, Default)]
+pub struct MapTimings {
+    pub view_pass: Duration,
+    pub light_pass: Duration,
+    pub map_builds: Duration,
+    pub cache_builds: Duration,
+}
+
+impl MapTimings {
+    pub fn total(&self) -> Duration {
+        self.view_pass + self.light_pass + self.map_builds + self.cache_builds
+    }
+}
+
+/// The maps and caches of one render.
+#[derive(Default)]
+pub struct Guidance {
+    /// The photon map (guides camera paths) and the importance map (guides light paths).
+    pub photons: Option<BuiltMap>,
+    pub importons: Option<BuiltMap>,
+    pub photon_cache: Option<GuideCache>,
+    pub importon_cache: Option<GuideCache>,
+    pub timings: MapTimings,
+    /// One line per map and cache built.
+    pub summaries: Vec<String>,
+}
+
+impl Guidance {
+    /// Runs the passes and builds the maps and caches `method` needs.
+    pub fn build(
+        scene: &Scene,
+        method: &Method,
+        params: &GuideParams,
+        pass: &PassSettings,
+        heap: &dyn Fn() -> Option<usize>,
+    ) -> Self {
+        let mut g = Guidance::default();
+        if !method.guided() {
+            return g;
+        }
+        let paths = method.integrator.paths();
+        let (photon_map, importance_map) = (paths.camera, paths.light);
+        let cache = params.cache;
+        let bsdf = GuidedSampler::bsdf();
+        let light = (photon_map || (cache && importance_map)).then(|| {
+            let out = light_pass(
+                scene,
+                &PassSettings {
+                    paths: scene.maps.photons,
+                    ..pass.clone()
+                },
+                &bsdf,
+            );
+            g.timings.light_pass += out.stats.time;
+            out
+        });
+        let view = (importance_map || (cache && photon_map)).then(|| {
+            let out = view_pass(
+                scene,
+                &PassSettings {
+                    paths: scene.maps.importons,
+                    ..pass.clone()
+                },
+                &bsdf,
+            );
+            g.timings.view_pass += out.stats.time;
+            out
+        });
+        // Seeds of each cache: the other pass's scattering points.
+        let photon_seeds = (cache && photon_map)
+            .then(|| view.as_ref().map(|v| v.seeds()))
+            .flatten();
+        let importon_seeds = (cache && importance_map)
+            .then(|| light.as_ref().map(|l| l.seeds()))
+            .flatten();
+        let max_dist = scene.map_max_dist();
+        let mut make = |kind: MapKind, out: PassOutput, seeds: Option<Vec<_>>| {
+            let built = build_map(kind, out, heap);
+            g.timings.map_builds += built.map.build_time;
+            g.summaries.push(built.summary());
+            let cache = seeds.map(|s| {
+                let c = GuideCache::build(&built.map, method.guide, &s, params, max_dist);
+                g.timings.cache_builds += c.stats.build_time;
+                g.summaries
+                    .push(format!("{} cache: {}", kind.name(), c.stats.summary()));
+                c
+            });
+            (built, cache)
+        };
+        if let (true, Some(out)) = (photon_map, light) {
+            let (b, c) = make(MapKind::Photons, out, photon_seeds);
+            g.photons = Some(b);
+            g.photon_cache = c;
+        }
+        if let (true, Some(out)) = (importance_map, view) {
+            let (b, c) = make(MapKind::Importons, out, importon_seeds);
+            g.importons = Some(b);
+            g.importon_cache = c;
+        }
+        g
+    }
+
+    /// The sampler of camera paths (over the photon map).
+    pub fn camera_sampler(
+        &self,
+        scene: &Scene,
+        method: &Method,
+        params: &GuideParams,
+    ) -> GuidedSampler<'_> {
+        let (map, cache) = (self.photons.as_ref(), self.photon_cache.as_ref());
+        sampler(scene, method, params, map, cache)
+    }
+
+    /// The sampler of light paths (over the importance map).
+    pub fn light_sampler(
+        &self,
+        scene: &Scene,
+        method: &Method,
+        params: &GuideParams,
+    ) -> GuidedSampler<'_> {
+        let (map, cache) = (self.importons.as_ref(), self.importon_cache.as_ref());
+        sampler(scene, method, params, map, cache)
+    }
+}
+
+fn sampler<'a>(
+    scene: &Scene,
+    method: &Method,
+    params: &GuideParams,
+    map: Option<&'a BuiltMap>,
+    cache: Option<&'a GuideCache>,
+) -> GuidedSampler<'a> {
+    let source = match (cache, map) {
+        (Some(c), _) => GuideSource::Cached(c),
+        (None, Some(m)) => GuideSource::PerEvent {
+            map: &m.map,
+            guide: method.guide,
+            max_dist: scene.map_max_dist(),
+        },
+        (None, None) => GuideSource::Bsdf,
+    };
+    GuidedSampler {
+        source,
+        params: params.clone(),
+        soft_glossy_max: scene.maps.soft_glossy_max,
+    }
 }
 
 /// A picture of `particles` seen from the camera: every particle visible from the camera is

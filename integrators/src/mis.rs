@@ -1,4 +1,7 @@
-//! Multiple importance sampling weights of the combined image (Veach 1997, ch. 9 and 10).
+//! Multiple importance sampling weights of the combined image (Veach 1997, ch. 9 and 10),
+//! kept as running quantities along each subpath, as SmallVCM keeps its `dVCM`/`dVC`: a
+//! [`CameraMis`] rides along every camera path and a [`LightMis`] along every light path,
+//! each updated once per vertex, so that every weight costs O(1) where it is needed.
 //!
 //! The combined image weighs three strategies for a path `x0 (camera) ... xk (light)` of `k`
 //! segments: `p0` a camera path that hits the light, `p1` a camera path whose last vertex is
@@ -10,9 +13,7 @@
 //! The densities use **unguided** direction pdfs (the BSDF's, the light's emission, the
 //! camera's), whichever sampler actually drew the path. The weights stay a partition of unity
 //! for every path, so the combined estimate stays unbiased (Veach 1997, §9.2.2: any weights
-//! that sum to one over the strategies able to make a path will do), and they cost no particle
-//! query: evaluating a guided pdf for the other direction at every vertex would need the other
-//! map's query there too, doubling the queries for a second-order gain.
+//! that sum to one over the strategies able to make a path will do).
 //!
 //! Both directions are counted equally: one camera path per pixel per pass and one light path
 //! per pixel per pass, with the camera pdf taken over the whole image, give equal sample
@@ -20,6 +21,8 @@
 //! `MISWeight`; connections at delta vertices are impossible and get density 0.
 
 use footprint::bsdf::Bsdf;
+use footprint::scene::Scene;
+use footprint::scene::light::{Light, LightSample};
 use glam::Vec3;
 
 /// Converts a solid-angle density at `from` into an area density at `to` (normal `n_to`, or
@@ -70,4 +73,310 @@ pub fn weight(own: f64, all: [f64; 3]) -> f32 {
     let o = own / m;
     let sum: f64 = all.iter().map(|p| (p / m) * (p / m)).sum();
     (o * o / sum) as f32
+}
+
+/// The unguided positional density of light `li` at one of its points: choice x area pdf.
+#[inline]
+pub fn light_pos_pdf(scene: &Scene, li: u32) -> f64 {
+    let pmf = scene.light_pmf(li) as f64;
+    match &scene.lights[li as usize] {
+        Light::Area { area, .. } => pmf / *area as f64,
+        _ => pmf,
+    }
+}
+
+/// A subpath vertex as the trackers remember it.
+#[derive(Clone, Copy)]
+struct MisVertex {
+    p: Vec3,
+    n: Option<Vec3>,
+    /// `None` for the subpath's source (the camera, or the light point).
+    bsdf: Option<Bsdf>,
+    /// The path left this vertex by a delta lobe.
+    delta: bool,
+}
+
+/// The last two vertices of a subpath and whether its first surface vertex was left by a
+/// delta lobe (then the other direction cannot connect to it).
+#[derive(Clone, Copy)]
+struct Recent {
+    before: [MisVertex; 2],
+    first_delta: bool,
+}
+
+impl Recent {
+    fn new(source: MisVertex) -> Self {
+        Recent {
+            before: [source; 2],
+            first_delta: false,
+        }
+    }
+
+    /// The path left the vertex of depth `depth` at `p` by a direction sampled with `delta`.
+    fn scattered(&mut self, depth: u32, p: Vec3, ng: Vec3, bsdf: &Bsdf, delta: bool) {
+        if depth == 1 {
+            self.first_delta = delta;
+        }
+        self.before[1] = self.before[0];
+        self.before[0] = MisVertex {
+            p,
+            n: Some(ng),
+            bsdf: Some(*bsdf),
+            delta,
+        };
+    }
+}
+
+/// The running densities of a camera subpath `x0 (camera), x1, ..., xj`.
+pub struct CameraMis {
+    /// Product of the camera-direction area densities up to `xj`.
+    d_fwd: f64,
+    /// Product of the light-direction area densities of `x1 .. x_{j-2}`.
+    b_back: f64,
+    /// The last factor of `d_fwd`: the density of `xj` from `x_{j-1}`.
+    last_fwd: f64,
+    /// `x_{j-1}`, `x_{j-2}`, and whether `x1` was left by a delta lobe (light tracing
+    /// cannot connect to it then).
+    recent: Recent,
+}
+
+impl CameraMis {
+    pub fn new(camera: Vec3) -> Self {
+        let cam = MisVertex {
+            p: camera,
+            n: None,
+            bsdf: None,
+            delta: false,
+        };
+        CameraMis {
+            d_fwd: 1.0,
+            b_back: 1.0,
+            last_fwd: 0.0,
+            recent: Recent::new(cam),
+        }
+    }
+
+    /// The path arrived at `xj = p` (normal `ng`, `depth = j`) along `dir`.
+    pub fn arrive(&mut self, scene: &Scene, depth: u32, dir: Vec3, p: Vec3, ng: Vec3) {
+        let cam = &scene.camera;
+        let [b0, b1] = self.recent.before;
+        self.last_fwd = match b0.bsdf {
+            None => to_area(
+                cam.pdf_dir(dir.dot(cam.frame.z)) as f64,
+                cam.position,
+                p,
+                Some(ng),
+            ),
+            Some(b) => step_area(
+                &b,
+                b0.delta,
+                b0.p,
+                (b1.p - b0.p).normalize_or_zero(),
+                p,
+                Some(ng),
+            ),
+        };
+        self.d_fwd *= self.last_fwd;
+        // Light-direction density of x_{j-2} from x_{j-1}, now that xj is known.
+        if depth >= 3 {
+            if let Some(b) = b0.bsdf {
+                self.b_back *= step_area(&b, b0.delta, b0.p, dir, b1.p, b1.n);
+            }
+        }
+    }
+
+    /// Weight of emission from light `li` found at `xj = p` (`wo` back along the path).
+    pub fn weight_light_hit(&self, scene: &Scene, li: u32, depth: u32, wo: Vec3, p: Vec3) -> f32 {
+        let light = &scene.lights[li as usize];
+        let b0 = &self.recent.before[0];
+        let p_l = light_pos_pdf(scene, li);
+        let p0 = self.d_fwd;
+        let p1 = match b0.bsdf {
+            Some(_) if !b0.delta && self.last_fwd > 0.0 => self.d_fwd / self.last_fwd * p_l,
+            _ => 0.0,
+        };
+        let pk = if depth == 1 {
+            p_l
+        } else if self.recent.first_delta {
+            0.0
+        } else {
+            let emit = to_area(light.pdf_le_dir(wo) as f64, p, b0.p, b0.n);
+            p_l * self.b_back * emit
+        };
+        weight(p0, [p0, p1, pk])
+    }
+
+    /// Weight of a next-event connection from `xj` (BSDF `bsdf`, `wo` back along the path)
+    /// to the light sample `ls` of light `li`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn weight_nee(
+        &self,
+        scene: &Scene,
+        li: u32,
+        depth: u32,
+        bsdf: &Bsdf,
+        p: Vec3,
+        ng: Vec3,
+        wo: Vec3,
+        ls: &LightSample,
+    ) -> f32 {
+        let light = &scene.lights[li as usize];
+        let b0 = &self.recent.before[0];
+        let p_l = light_pos_pdf(scene, li);
+        let fwd_l = if ls.delta {
+            0.0
+        } else {
+            step_area(bsdf, false, p, wo, ls.p, ls.n)
+        };
+        let p0 = self.d_fwd * fwd_l;
+        let p1 = self.d_fwd * p_l;
+        let pk = if depth >= 2 && self.recent.first_delta {
+            0.0
+        } else {
+            let emit = to_area(light.pdf_le_dir(-ls.wi) as f64, ls.p, p, Some(ng));
+            let back = if depth >= 2 {
+                step_area(bsdf, false, p, ls.wi, b0.p, b0.n)
+            } else {
+                1.0
+            };
+            p_l * self.b_back * back * emit
+        };
+        weight(p1, [p0, p1, pk])
+    }
+
+    /// The path left `xj` by a direction sampled with `delta`.
+    pub fn scattered(&mut self, depth: u32, p: Vec3, ng: Vec3, bsdf: &Bsdf, delta: bool) {
+        self.recent.scattered(depth, p, ng, bsdf, delta);
+    }
+}
+
+/// The running densities of a light subpath `y0 (light point), y1, ..., yj`.
+pub struct LightMis {
+    /// Light-direction area densities, the light position's included.
+    l_fwd: f64,
+    /// Camera-direction densities of `y1 .. y_{j-2}` (each from its successor).
+    r_prod: f64,
+    /// Camera-direction density of the light point from `y1` (0 for delta lights).
+    pf_light: f64,
+    p_l: f64,
+    /// The light is a point (delta in position): a camera path cannot hit it.
+    delta_light: bool,
+    /// `y_{j-1}`, `y_{j-2}`, and whether `y1` was left by a delta lobe (next-event
+    /// estimation cannot reach it then).
+    recent: Recent,
+}
+
+impl LightMis {
+    /// A light subpath starting at the point `p` (normal `n`, `None` for a point light) of
+    /// light `li`.
+    pub fn new(scene: &Scene, li: u32, p: Vec3, n: Option<Vec3>) -> Self {
+        let p_l = light_pos_pdf(scene, li);
+        let start = MisVertex {
+            p,
+            n,
+            bsdf: None,
+            delta: false,
+        };
+        LightMis {
+            l_fwd: p_l,
+            r_prod: 1.0,
+            pf_light: 0.0,
+            p_l,
+            delta_light: n.is_none(),
+            recent: Recent::new(start),
+        }
+    }
+
+    /// Weight of the light point `y0` itself seen by the camera in direction `-to_camera`.
+    pub fn weight_light_seen(&self, scene: &Scene, to_camera: Vec3) -> f32 {
+        let cam = &scene.camera;
+        let y0 = &self.recent.before[0];
+        // k = 1: the camera path could hit an area light here, nothing else.
+        let p0 = if y0.n.is_some() {
+            to_area(
+                cam.pdf_dir((-to_camera).dot(cam.frame.z)) as f64,
+                cam.position,
+                y0.p,
+                y0.n,
+            )
+        } else {
+            0.0
+        };
+        weight(self.p_l, [p0, 0.0, self.p_l])
+    }
+
+    /// The path arrived at `yj = p` (normal `ng`, `depth = j`) along `dir`.
+    pub fn arrive(&mut self, light: &Light, depth: u32, dir: Vec3, p: Vec3, ng: Vec3) {
+        let [b0, b1] = self.recent.before;
+        self.l_fwd *= match b0.bsdf {
+            None => to_area(light.pdf_le_dir(dir) as f64, b0.p, p, Some(ng)),
+            Some(b) => step_area(
+                &b,
+                b0.delta,
+                b0.p,
+                (b1.p - b0.p).normalize_or_zero(),
+                p,
+                Some(ng),
+            ),
+        };
+        if depth >= 2 {
+            if let Some(b) = b0.bsdf {
+                let d = if depth == 2 && self.delta_light {
+                    0.0 // a camera path cannot hit a delta light
+                } else {
+                    step_area(&b, b0.delta, b0.p, dir, b1.p, b1.n)
+                };
+                if depth == 2 {
+                    self.pf_light = d
+                } else {
+                    self.r_prod *= d
+                }
+            }
+        }
+    }
+
+    /// Weight of the camera connection from `yj = p` (BSDF `bsdf`, normal `ng`, direction to
+    /// the camera `wi`).
+    pub fn weight_camera_connection(
+        &self,
+        scene: &Scene,
+        depth: u32,
+        bsdf: &Bsdf,
+        p: Vec3,
+        ng: Vec3,
+        wi: Vec3,
+    ) -> f32 {
+        let cam = &scene.camera;
+        let b0 = &self.recent.before[0];
+        let cam_area = to_area(
+            cam.pdf_dir((-wi).dot(cam.frame.z)) as f64,
+            cam.position,
+            p,
+            Some(ng),
+        );
+        let now = if depth == 1 && self.delta_light {
+            0.0
+        } else {
+            step_area(bsdf, false, p, wi, b0.p, b0.n)
+        };
+        let (p0, p1) = if depth == 1 {
+            (cam_area * now, cam_area * self.p_l)
+        } else {
+            let base = cam_area * now * self.r_prod;
+            (
+                base * self.pf_light,
+                if self.recent.first_delta {
+                    0.0
+                } else {
+                    base * self.p_l
+                },
+            )
+        };
+        weight(self.l_fwd, [p0, p1, self.l_fwd])
+    }
+
+    /// The path left `yj` by a direction sampled with `delta`.
+    pub fn scattered(&mut self, depth: u32, p: Vec3, ng: Vec3, bsdf: &Bsdf, delta: bool) {
+        self.recent.scattered(depth, p, ng, bsdf, delta);
+    }
 }

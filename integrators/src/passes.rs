@@ -1,32 +1,40 @@
-//! The two particle passes (Hey & Purgathofer 2001, §2.1; METHOD.md, "Symmetry"):
+//! The two particle passes (Hey & Purgathofer 2001, §2.1; docs/method.md, "Symmetry"):
 //!
 //! * the **light pass** emits photons from the lights in proportion to power (area lights
 //!   uniformly in area and cosine-weighted in direction, spot lights in their cone in
-//!   proportion to the falloff, point lights uniformly) and traces them with BSDF sampling
-//!   (importance mode) and Russian roulette; each carries flux `Φ_p`;
+//!   proportion to the falloff, point lights uniformly) and traces them in importance mode;
+//!   each carries flux `Φ_p`;
 //! * the **view pass** shoots importons from the camera through the image, uniformly in
 //!   raster position, which distributes them like the camera's importance `W_e` (the first
-//!   segment's weight `W_e cos θ / pdf` is exactly 1 for a pinhole), and traces them with BSDF
-//!   sampling (radiance mode); each carries importance `W_p` per channel, which starts equal
-//!   in all channels and is multiplied by the colours the path passes through.
+//!   segment's weight `W_e cos θ / pdf` is exactly 1 for a pinhole), and traces them in
+//!   radiance mode; each carries importance `W_p` per channel, which starts equal in all
+//!   channels and is multiplied by the colours the path passes through.
 //!
-//! Both store a particle at every hit on a diffuse or soft glossy surface (Blinn exponent at
-//! most `soft_glossy_max`), never on mirrors, glass or strongly glossy surfaces. Each path
-//! starts with weight `1/N` of the whole (`N` = paths shot), so a map's weights sum to the
-//! power (or importance) arriving at stored surfaces.
+//! Both are walks of [`crate::walk`] (the integrators' path loop and Russian roulette rule)
+//! with a visitor that stores a particle at every hit on a diffuse or soft glossy surface
+//! (where the guides use them, [`guides_at`]), never on mirrors, glass or strongly glossy
+//! surfaces. Each path starts with weight `1/N` of the whole (`N` = paths shot), so a map's
+//! weights sum to the power (or importance) arriving at stored surfaces. Directions come
+//! from the pass's sampler: the BSDF's own sampling unless a map of the other pass guides
+//! it.
+//!
+//! Besides its particles, a pass reports where its paths asked for a direction at a
+//! guiding surface (its particles' places, and for the light pass the points where paths
+//! left area lights): the seeds of the other map's guide cache.
 //!
 //! Parallel with rayon; paths are traced in fixed chunks with per-path random streams and
 //! concatenated in chunk order, so a map is reproducible from its seed.
 
+use crate::walk::{Arrival, Start, Vertex, Visitor, walk};
 use footprint::Rgb;
 use footprint::bsdf::TransportMode;
-// Particles are stored exactly where the guided samplers use them.
-use footprint::direction_sampler::guides_at;
-use footprint::geometry::{offset_ray_origin, spawn_origin};
-use footprint::math::luminance;
-use footprint::particle_map::ParticleInput;
+use footprint::guide::cache::Seed;
+use footprint::guide::guides_at;
+use footprint::guide::particle_map::ParticleInput;
+use footprint::guide::sampler::{DirectionSample, GuidedSampler, SamplerState};
 use footprint::rng::Rng;
 use footprint::scene::Scene;
+use footprint::scene::geometry::offset_ray_origin;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
@@ -57,119 +65,130 @@ pub struct PassStats {
 
 pub struct PassOutput {
     pub particles: Vec<ParticleInput>,
+    /// Points where paths left area lights (light pass only).
+    pub emission_points: Vec<Seed>,
     pub stats: PassStats,
+}
+
+impl PassOutput {
+    /// Where this pass's paths asked for a direction at guiding surfaces: the seeds of the
+    /// other map's guide cache.
+    pub fn seeds(&self) -> Vec<Seed> {
+        self.particles
+            .iter()
+            .map(|p| Seed {
+                position: p.position,
+                normal: p.normal,
+            })
+            .chain(self.emission_points.iter().copied())
+            .collect()
+    }
 }
 
 const DOMAIN_LIGHT_PASS: u64 = 11;
 const DOMAIN_VIEW_PASS: u64 = 12;
 const CHUNK: usize = 2048;
 
+#[derive(Default)]
 struct ChunkOut {
     particles: Vec<ParticleInput>,
+    emission_points: Vec<Seed>,
     escaped: Vec<Rgb>,
 }
 
-/// Traces one path from `origin` along `dir` with weight `beta`, storing particles.
-#[allow(clippy::too_many_arguments)]
-fn trace(
-    scene: &Scene,
-    s: &PassSettings,
-    mode: TransportMode,
-    mut origin: Vec3,
-    mut dir: Vec3,
-    mut beta: Rgb,
-    rng: &mut Rng,
-    out: &mut ChunkOut,
-) {
-    let beta_start = luminance(beta).max(f32::MIN_POSITIVE);
-    let mut specular_chain = true;
-    for depth in 1..=s.max_depth {
-        let Some(hit) = scene.intersect(origin, dir, f32::INFINITY) else {
-            let k = depth as usize - 1;
-            if out.escaped.len() <= k {
-                out.escaped.resize(k + 1, Rgb::ZERO);
-            }
-            out.escaped[k] += beta;
-            return;
-        };
-        let wo = -dir;
-        let bsdf = scene.bsdf(&hit);
-        if guides_at(&bsdf.lobes, s.soft_glossy_max) {
-            let n = if hit.ng.dot(wo) >= 0.0 {
-                hit.ng
+/// Stores particles along a walk.
+struct Storing<'o> {
+    soft_glossy_max: f32,
+    specular_chain: bool,
+    out: &'o mut ChunkOut,
+}
+
+impl Visitor for Storing<'_> {
+    fn escaped(&mut self, _dir: Vec3, beta: Rgb, depth: u32, _from: &Arrival) {
+        let k = depth as usize - 1;
+        if self.out.escaped.len() <= k {
+            self.out.escaped.resize(k + 1, Rgb::ZERO);
+        }
+        self.out.escaped[k] += beta;
+    }
+
+    fn reached(&mut self, v: &Vertex, _from: &Arrival) {
+        if guides_at(&v.bsdf.lobes, self.soft_glossy_max) {
+            let n = if v.hit.ng.dot(v.wo) >= 0.0 {
+                v.hit.ng
             } else {
-                -hit.ng
+                -v.hit.ng
             };
-            out.particles.push(ParticleInput {
-                position: hit.p,
-                dir: wo,
+            self.out.particles.push(ParticleInput {
+                position: v.hit.p,
+                dir: v.wo,
                 normal: n,
-                weight: beta,
-                depth: depth.min(u16::MAX as u32) as u16,
-                specular_chain,
+                weight: v.beta,
+                depth: v.depth.min(u16::MAX as u32) as u16,
+                specular_chain: self.specular_chain,
             });
         }
-        if depth == s.max_depth {
-            return;
-        }
-        let Some(smp) = bsdf.sample(wo, rng.uniform(), rng.uniform2(), mode) else {
-            return;
-        };
-        beta *= smp.weight;
-        if !beta.is_finite() || beta.max_element() <= 0.0 {
-            return;
-        }
-        specular_chain &= smp.delta;
-        if depth >= 2 {
-            let q = (luminance(beta) / beta_start).clamp(0.05, 1.0);
-            if rng.uniform() >= q {
-                return;
-            }
-            beta /= q;
-        }
-        origin = spawn_origin(hit.p, hit.ng, smp.wi);
-        dir = smp.wi;
+    }
+
+    fn scattered(&mut self, _v: &Vertex, s: &DirectionSample) {
+        self.specular_chain &= s.delta;
     }
 }
 
-fn run_chunks(
-    s: &PassSettings,
-    path: impl Fn(usize, &mut ChunkOut) + Sync,
-) -> (Vec<ParticleInput>, Vec<Rgb>) {
+fn run_chunks(s: &PassSettings, path: impl Fn(usize, &mut ChunkOut) + Sync) -> ChunkOut {
     let chunks = s.paths.div_ceil(CHUNK);
     let outs: Vec<ChunkOut> = (0..chunks)
         .into_par_iter()
         .map(|c| {
-            let mut out = ChunkOut {
-                particles: Vec::new(),
-                escaped: Vec::new(),
-            };
+            let mut out = ChunkOut::default();
             for i in c * CHUNK..((c + 1) * CHUNK).min(s.paths) {
                 path(i, &mut out);
             }
             out
         })
         .collect();
-    let total: usize = outs.iter().map(|o| o.particles.len()).sum();
-    let mut particles = Vec::with_capacity(total);
-    let mut escaped: Vec<Rgb> = Vec::new();
+    let mut all = ChunkOut {
+        particles: Vec::with_capacity(outs.iter().map(|o| o.particles.len()).sum()),
+        ..Default::default()
+    };
     for o in outs {
-        particles.extend_from_slice(&o.particles);
-        if escaped.len() < o.escaped.len() {
-            escaped.resize(o.escaped.len(), Rgb::ZERO);
+        all.particles.extend_from_slice(&o.particles);
+        all.emission_points.extend_from_slice(&o.emission_points);
+        if all.escaped.len() < o.escaped.len() {
+            all.escaped.resize(o.escaped.len(), Rgb::ZERO);
         }
-        for (e, x) in escaped.iter_mut().zip(&o.escaped) {
+        for (e, x) in all.escaped.iter_mut().zip(&o.escaped) {
             *e += *x;
         }
     }
-    (particles, escaped)
+    all
 }
 
-/// The light pass: a photon map's particles.
-pub fn light_pass(scene: &Scene, s: &PassSettings) -> PassOutput {
+/// Walks one particle path, storing into `out`.
+#[allow(clippy::too_many_arguments)]
+fn trace<'a>(
+    scene: &Scene,
+    s: &PassSettings,
+    start: &Start,
+    sampler: &GuidedSampler<'a>,
+    state: &mut SamplerState<'a>,
+    rng: &mut Rng,
+    out: &mut ChunkOut,
+) {
+    let mut v = Storing {
+        soft_glossy_max: s.soft_glossy_max,
+        specular_chain: true,
+        out,
+    };
+    walk(scene, start, sampler, state, rng, &mut v);
+}
+
+/// The light pass: a photon map's particles. `sampler` chooses the directions (BSDF
+/// sampling, or guided by an importance map).
+pub fn light_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> PassOutput {
     let start = Instant::now();
     let inv_n = 1.0 / s.paths.max(1) as f32;
-    let (particles, escaped) = run_chunks(s, |i, out| {
+    let all = run_chunks(s, |i, out| {
         let mut rng = Rng::new(s.seed, DOMAIN_LIGHT_PASS, i as u64);
         let (li, pmf) = scene.light_distribution.sample(rng.uniform());
         let light = &scene.lights[li];
@@ -181,59 +200,67 @@ pub fn light_pass(scene: &Scene, s: &PassSettings) -> PassOutput {
             return;
         }
         let origin = match em.n {
-            Some(n) => offset_ray_origin(em.p, n),
+            Some(n) => {
+                out.emission_points.push(Seed {
+                    position: em.p,
+                    normal: n,
+                });
+                offset_ray_origin(em.p, n)
+            }
             None => em.p,
         };
-        trace(
-            scene,
-            s,
-            TransportMode::Importance,
+        let start = Start {
             origin,
-            em.dir,
+            dir: em.dir,
             beta,
-            &mut rng,
-            out,
-        );
+            beta0: beta,
+            mode: TransportMode::Importance,
+            max_vertex_depth: s.max_depth,
+        };
+        let mut state = SamplerState::default();
+        trace(scene, s, &start, sampler, &mut state, &mut rng, out);
     });
     let emitted = scene.lights.iter().map(|l| l.power_rgb()).sum();
     PassOutput {
-        particles,
+        particles: all.particles,
+        emission_points: all.emission_points,
         stats: PassStats {
             paths: s.paths,
             emitted,
-            escaped,
+            escaped: all.escaped,
             time: start.elapsed(),
         },
     }
 }
 
-/// The view pass: an importance map's particles.
-pub fn view_pass(scene: &Scene, s: &PassSettings) -> PassOutput {
+/// The view pass: an importance map's particles. `sampler` chooses the directions (BSDF
+/// sampling, or guided by a photon map).
+pub fn view_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> PassOutput {
     let start = Instant::now();
     let cam = &scene.camera;
     let inv_n = 1.0 / s.paths.max(1) as f32;
     let size = Vec2::new(cam.width as f32, cam.height as f32);
-    let (particles, escaped) = run_chunks(s, |i, out| {
+    let all = run_chunks(s, |i, out| {
         let mut rng = Rng::new(s.seed, DOMAIN_VIEW_PASS, i as u64);
         let raster = rng.uniform2() * size;
-        let dir = cam.ray_dir(raster);
-        trace(
-            scene,
-            s,
-            TransportMode::Radiance,
-            cam.position,
-            dir,
-            Rgb::splat(inv_n),
-            &mut rng,
-            out,
-        );
+        let start = Start {
+            origin: cam.position,
+            dir: cam.ray_dir(raster),
+            beta: Rgb::splat(inv_n),
+            beta0: Rgb::splat(inv_n),
+            mode: TransportMode::Radiance,
+            max_vertex_depth: s.max_depth,
+        };
+        let mut state = SamplerState::default();
+        trace(scene, s, &start, sampler, &mut state, &mut rng, out);
     });
     PassOutput {
-        particles,
+        particles: all.particles,
+        emission_points: all.emission_points,
         stats: PassStats {
             paths: s.paths,
             emitted: Rgb::ONE,
-            escaped,
+            escaped: all.escaped,
             time: start.elapsed(),
         },
     }

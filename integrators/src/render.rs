@@ -1,101 +1,30 @@
-//! The render driver: builds the particle maps an integrator needs (and only those), runs
-//! the integrator in passes over the film, in parallel with rayon, until a sample count or a
-//! time budget is reached, and reports where the time went.
-//!
-//! * `pt`: path tracing; guided by the photon map (`--guide grid|footprint`).
-//! * `lt`: light tracing; guided by the importance map.
-//! * `combined`: both in every pass, each image kept as a layer, and one combined image in
-//!   which every path is weighted against the other strategies ([`crate::mis`]).
+//! The render driver: builds the particle maps and guide caches a method needs (and only
+//! those, [`Guidance`]), runs the integrator in passes over the films, in parallel with
+//! rayon, until a sample count or a time budget is reached, and reports where the time
+//! went. What a path computes is the integrator's business ([`crate::integrator`]).
 //!
 //! Reproducibility: camera path `i` of pass `k` and light path `i` of pass `k` each draw from
 //! their own random stream `(seed, k, i)`; light-path splats are applied chunk by chunk in
 //! chunk order. The image for a given seed and sample count is therefore the same whatever
 //! the number of threads.
 
-use crate::light_tracer::{self, Splats};
-use crate::maps::{BuiltMap, build_map};
+use crate::integrator::Context;
+use crate::maps::{Guidance, MapTimings};
+use crate::method::Method;
 use crate::passes::PassSettings;
-use crate::path_tracer;
-use footprint::direction_sampler::{BsdfSampler, DirectionSampler, GuideParams, GuideState};
+use footprint::Rgb;
 use footprint::film::{Film, Image, SampleStats, SplatList};
-use footprint::footprint_sampler::FootprintSampler;
-use footprint::grid_sampler::GridSampler;
-use footprint::particle_map::{MapKind, ParticleMap};
+use footprint::guide::sampler::SamplerState;
 use footprint::rng::Rng;
 use footprint::scene::Scene;
+use footprint::settings::GuideParams;
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
-
-/// Which integrator renders the image.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Integrator {
-    /// Path tracing with next-event estimation and MIS.
-    Pt,
-    /// Light tracing with camera connections.
-    Lt,
-    /// Both, and their MIS combination.
-    Combined,
-}
-
-impl Integrator {
-    pub fn name(self) -> &'static str {
-        match self {
-            Integrator::Pt => "pt",
-            Integrator::Lt => "lt",
-            Integrator::Combined => "combined",
-        }
-    }
-
-    pub fn parse(s: &str) -> Option<Self> {
-        match s {
-            "pt" => Some(Integrator::Pt),
-            "lt" => Some(Integrator::Lt),
-            "combined" => Some(Integrator::Combined),
-            _ => None,
-        }
-    }
-
-    fn traces_camera_paths(self) -> bool {
-        self != Integrator::Lt
-    }
-
-    fn traces_light_paths(self) -> bool {
-        self != Integrator::Pt
-    }
-}
-
-/// Which direction sampler guides the paths.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Guide {
-    Bsdf,
-    Grid,
-    Footprint,
-}
-
-impl Guide {
-    pub fn name(self) -> &'static str {
-        match self {
-            Guide::Bsdf => "bsdf",
-            Guide::Grid => "grid",
-            Guide::Footprint => "footprint",
-        }
-    }
-
-    pub fn parse(s: &str) -> Option<Self> {
-        match s {
-            "bsdf" => Some(Guide::Bsdf),
-            "grid" => Some(Guide::Grid),
-            "footprint" => Some(Guide::Footprint),
-            _ => None,
-        }
-    }
-}
 
 /// What to render and for how long.
 #[derive(Clone, Debug)]
 pub struct RenderOptions {
-    pub integrator: Integrator,
-    pub guide: Guide,
+    pub method: Method,
     pub guide_params: GuideParams,
     /// Samples per pixel (camera paths) and light paths per pixel per pass.
     pub spp: u32,
@@ -103,49 +32,42 @@ pub struct RenderOptions {
     pub time: Option<f64>,
     pub max_depth: u32,
     pub seed: u64,
-    /// Show a progress bar (only sensible on a terminal).
-    pub progress: bool,
 }
 
 impl Default for RenderOptions {
     /// Unguided path tracing, 16 samples per pixel, depth 8, seed 0.
     fn default() -> Self {
         RenderOptions {
-            integrator: Integrator::Pt,
-            guide: Guide::Bsdf,
+            method: Method::default(),
             guide_params: GuideParams::default(),
             spp: 16,
             time: None,
             max_depth: 8,
             seed: 0,
-            progress: false,
         }
     }
 }
 
 impl RenderOptions {
-    /// Options from the scene file's render and guide settings.
-    pub fn from_scene(scene: &Scene) -> Self {
+    /// Options from the scene file's render and guide settings; an unknown integrator or
+    /// guide name is an error naming its place in the file.
+    pub fn from_scene(scene: &Scene) -> Result<Self, String> {
         let s = &scene.settings;
-        RenderOptions {
-            integrator: Integrator::parse(&s.integrator).unwrap_or(Integrator::Pt),
-            guide: Guide::parse(&s.guide).unwrap_or(Guide::Bsdf),
+        Ok(RenderOptions {
+            method: Method::from_scene(scene)?,
             guide_params: scene.guide.clone(),
             spp: s.spp,
             time: s.time,
             max_depth: s.max_depth,
             seed: s.seed,
-            progress: false,
-        }
+        })
     }
 }
 
 /// Where the time went.
 #[derive(Clone, Debug, Default)]
 pub struct Timings {
-    pub view_pass: Duration,
-    pub light_pass: Duration,
-    pub map_builds: Duration,
+    pub maps: MapTimings,
     pub tracing: Duration,
     pub total: Duration,
 }
@@ -158,8 +80,8 @@ pub struct GuideCounts {
 }
 
 impl GuideCounts {
-    fn add(&mut self, s: &GuideState) {
-        self.prepared += s.prepared;
+    fn add(&mut self, s: &SamplerState) {
+        self.prepared += s.prepared_events;
         self.fallbacks += s.fallbacks;
     }
 }
@@ -167,9 +89,9 @@ impl GuideCounts {
 /// A rendered image (or three) and what it took.
 #[derive(Clone, Debug)]
 pub struct RenderResult {
-    /// The main image: `pt`, `lt` or `combined`.
+    /// The main image: the integrator's first layer.
     pub image: Image,
-    /// Every estimate as `(layer name, image)`: one for pt and lt, three for combined.
+    /// Every estimate as `(layer name, image)`.
     pub layers: Vec<(&'static str, Image)>,
     /// Passes done: samples per pixel (camera paths) and light paths per pixel.
     pub passes: u32,
@@ -183,31 +105,15 @@ pub struct RenderResult {
     /// Guided scattering events and BSDF fallbacks: camera paths, light paths.
     pub camera_guide: GuideCounts,
     pub light_guide: GuideCounts,
-    /// Summaries of the maps built.
+    /// Summaries of the maps and caches built.
     pub maps: Vec<String>,
 }
 
-/// Stream domains, so that the integrators never share random numbers.
-const DOMAIN_PT: u64 = 1;
-const DOMAIN_LT: u64 = 2;
-/// Light paths per chunk (one splat list each).
+/// Stream domains, so that camera and light paths never share random numbers.
+const DOMAIN_CAMERA: u64 = 1;
+const DOMAIN_LIGHT: u64 = 2;
+/// Light paths per chunk (one splat list per layer each).
 const LT_CHUNK: usize = 4096;
-
-fn make_sampler<'m>(
-    guide: Guide,
-    map: Option<&'m ParticleMap>,
-    params: &GuideParams,
-    max_dist: f32,
-    soft: f32,
-) -> Box<dyn DirectionSampler + 'm> {
-    match (guide, map) {
-        (Guide::Grid, Some(m)) => Box::new(GridSampler::new(m, params.clone(), max_dist, soft)),
-        (Guide::Footprint, Some(m)) => {
-            Box::new(FootprintSampler::new(m, params.clone(), max_dist, soft))
-        }
-        _ => Box::new(BsdfSampler),
-    }
-}
 
 /// Renders `scene`. `on_progress(fraction)` is called after every pass.
 pub fn render(scene: &Scene, opts: &RenderOptions, on_progress: impl FnMut(f64)) -> RenderResult {
@@ -225,139 +131,88 @@ pub fn render_with(
     let start = Instant::now();
     let cam = &scene.camera;
     let npix = cam.pixel_count();
-    let mut timings = Timings::default();
-    let mut map_summaries = Vec::new();
+    let integrator = opts.method.integrator;
+    let paths = integrator.paths();
+    let layers = integrator.layers();
 
-    // ---- Particle maps: only those the integrator and guide use ----
-    let guided = opts.guide != Guide::Bsdf;
-    let pass = |paths: usize| PassSettings {
-        paths,
+    // ---- Particle maps and guide caches: only those the method uses ----
+    let pass = PassSettings {
+        paths: 0,
         max_depth: opts.max_depth,
         seed: opts.seed,
         soft_glossy_max: scene.maps.soft_glossy_max,
     };
-    let mut build = |kind: MapKind, paths: usize| -> BuiltMap {
-        let b = build_map(scene, kind, &pass(paths), heap);
-        match kind {
-            MapKind::Photons => timings.light_pass += b.pass.stats.time,
-            MapKind::Importons => timings.view_pass += b.pass.stats.time,
-        }
-        timings.map_builds += b.map.build_time;
-        map_summaries.push(b.summary());
-        b
+    let guidance = Guidance::build(scene, &opts.method, &opts.guide_params, &pass, heap);
+    let ctx = Context {
+        scene,
+        max_depth: opts.max_depth,
+        camera_sampler: guidance.camera_sampler(scene, &opts.method, &opts.guide_params),
+        light_sampler: guidance.light_sampler(scene, &opts.method, &opts.guide_params),
     };
-    let photons = (guided && opts.integrator.traces_camera_paths())
-        .then(|| build(MapKind::Photons, scene.maps.photons));
-    let importons = (guided && opts.integrator.traces_light_paths())
-        .then(|| build(MapKind::Importons, scene.maps.importons));
-    let max_dist = scene.map_max_dist();
-    let soft = scene.maps.soft_glossy_max;
-    let camera_sampler = make_sampler(
-        opts.guide,
-        photons.as_ref().map(|b| &b.map),
-        &opts.guide_params,
-        max_dist,
-        soft,
-    );
-    let light_sampler = make_sampler(
-        opts.guide,
-        importons.as_ref().map(|b| &b.map),
-        &opts.guide_params,
-        max_dist,
-        soft,
-    );
 
     // ---- Passes ----
     let trace_start = Instant::now();
-    let want_combined = opts.integrator == Integrator::Combined;
-    let mut pt_film = Film::new(cam.width, cam.height);
-    let mut lt_film = Film::new(cam.width, cam.height);
-    let mut combined_film = Film::new(cam.width, cam.height);
+    let mut films: Vec<Film> = layers
+        .iter()
+        .map(|_| Film::new(cam.width, cam.height))
+        .collect();
     let mut camera_guide = GuideCounts::default();
     let mut light_guide = GuideCounts::default();
     let mut passes = 0u32;
     let mut last_pass_end = start.elapsed().as_secs_f64();
     loop {
-        if opts.integrator.traces_camera_paths() {
-            let rows: Vec<(Vec<footprint::Rgb>, Vec<footprint::Rgb>, GuideCounts)> = (0..cam
-                .height)
+        if paths.camera {
+            let rows: Vec<(Vec<Rgb>, GuideCounts)> = (0..cam.height)
                 .into_par_iter()
-                .map_init(GuideState::default, |state, y| {
-                    let before = (state.prepared, state.fallbacks);
-                    let mut pt = Vec::with_capacity(cam.width as usize);
-                    let mut comb =
-                        Vec::with_capacity(if want_combined { cam.width as usize } else { 0 });
-                    for x in 0..cam.width {
+                .map_init(SamplerState::default, |state, y| {
+                    let before = (state.prepared_events, state.fallbacks);
+                    let mut row = vec![Rgb::ZERO; cam.width as usize * layers.len()];
+                    for (x, out) in row.chunks_exact_mut(layers.len()).enumerate() {
+                        let x = x as u32;
                         let index =
                             passes as u64 * npix as u64 + (y as u64 * cam.width as u64 + x as u64);
-                        let mut rng = Rng::new(opts.seed, DOMAIN_PT, index);
+                        let mut rng = Rng::new(opts.seed, DOMAIN_CAMERA, index);
                         let raster =
                             cam.filter
                                 .sample_raster(x, y, cam.width, cam.height, rng.uniform2());
-                        let c = path_tracer::trace(
-                            scene,
-                            cam.position,
-                            cam.ray_dir(raster),
-                            opts.max_depth,
-                            &mut rng,
-                            camera_sampler.as_ref(),
-                            state,
-                            want_combined,
-                        );
-                        pt.push(c.pt);
-                        if want_combined {
-                            comb.push(c.combined);
-                        }
+                        integrator.camera_path(&ctx, raster, &mut rng, state, out);
                     }
                     let counts = GuideCounts {
-                        prepared: state.prepared - before.0,
+                        prepared: state.prepared_events - before.0,
                         fallbacks: state.fallbacks - before.1,
                     };
-                    (pt, comb, counts)
+                    (row, counts)
                 })
                 .collect();
-            pt_film.add_per_pixel(|x, y| rows[y as usize].0[x as usize]);
-            if want_combined {
-                combined_film.add_per_pixel(|x, y| rows[y as usize].1[x as usize]);
+            // A layer that only light paths write gets zeros here.
+            for (l, film) in films.iter_mut().enumerate() {
+                film.add_per_pixel(|x, y| rows[y as usize].0[x as usize * layers.len() + l]);
             }
             for r in &rows {
-                camera_guide.prepared += r.2.prepared;
-                camera_guide.fallbacks += r.2.fallbacks;
+                camera_guide.prepared += r.1.prepared;
+                camera_guide.fallbacks += r.1.fallbacks;
             }
         }
-        if opts.integrator.traces_light_paths() {
+        if paths.light {
             let chunks = npix.div_ceil(LT_CHUNK);
-            let lists: Vec<(SplatList, SplatList, GuideCounts)> = (0..chunks)
+            let lists: Vec<(Vec<SplatList>, GuideCounts)> = (0..chunks)
                 .into_par_iter()
                 .map(|c| {
-                    let mut state = GuideState::default();
-                    let mut lt = SplatList::default();
-                    let mut comb = SplatList::default();
+                    let mut state = SamplerState::default();
+                    let mut splats = vec![SplatList::default(); layers.len()];
                     for i in c * LT_CHUNK..((c + 1) * LT_CHUNK).min(npix) {
                         let index = passes as u64 * npix as u64 + i as u64;
-                        let mut rng = Rng::new(opts.seed, DOMAIN_LT, index);
-                        let mut splats = Splats {
-                            lt: &mut lt,
-                            combined: want_combined.then_some(&mut comb),
-                        };
-                        light_tracer::trace(
-                            scene,
-                            opts.max_depth,
-                            &mut rng,
-                            light_sampler.as_ref(),
-                            &mut state,
-                            &mut splats,
-                        );
+                        let mut rng = Rng::new(opts.seed, DOMAIN_LIGHT, index);
+                        integrator.light_path(&ctx, &mut rng, &mut state, &mut splats);
                     }
                     let mut counts = GuideCounts::default();
                     counts.add(&state);
-                    (lt, comb, counts)
+                    (splats, counts)
                 })
                 .collect();
-            for (lt, comb, counts) in &lists {
-                lt_film.add_splats(lt);
-                if want_combined {
-                    combined_film.add_splats(comb);
+            for (splats, counts) in &lists {
+                for (film, s) in films.iter_mut().zip(splats) {
+                    film.add_splats(s);
                 }
                 light_guide.prepared += counts.prepared;
                 light_guide.fallbacks += counts.fallbacks;
@@ -378,55 +233,35 @@ pub fn render_with(
             break;
         }
     }
-    timings.tracing = trace_start.elapsed();
+    let tracing = trace_start.elapsed();
 
-    // Camera paths average `passes` samples per pixel; light paths divide their splats by
-    // the number of light paths, `passes` per pixel (see `light_tracer`).
+    // Every layer averages its passes (light-path splats are already per pixel).
     let n = passes as f64;
-    let pt_img = pt_film.to_image(1.0 / n);
-    let lt_img = lt_film.to_image(1.0 / (n * npix as f64));
     let mut stats = SampleStats::default();
-    let mut pt_stats = pt_film.stats;
-    let mut lt_stats = lt_film.stats;
-    lt_stats.max_luminance /= npix as f32;
-    pt_stats.merge(&lt_stats);
-    stats.merge(&pt_stats);
-    let mut layers: Vec<(&'static str, Image)> = Vec::new();
-    let image = match opts.integrator {
-        Integrator::Pt => {
-            layers.push(("pt", pt_img.clone()));
-            pt_img
-        }
-        Integrator::Lt => {
-            layers.push(("lt", lt_img.clone()));
-            lt_img
-        }
-        Integrator::Combined => {
-            // Camera-path contributions and light-path splats (pre-divided by P in
-            // `light_tracer`) are both averaged per pass.
-            let combined = combined_film.to_image(1.0 / n);
-            stats.merge(&combined_film.stats);
-            layers.push(("combined", combined.clone()));
-            layers.push(("pt", pt_img));
-            layers.push(("lt", lt_img));
-            combined
-        }
-    };
-    let paths = passes as u64
-        * npix as u64
-        * (opts.integrator.traces_camera_paths() as u64
-            + opts.integrator.traces_light_paths() as u64);
-    timings.total = start.elapsed();
+    let layer_images: Vec<(&'static str, Image)> = layers
+        .iter()
+        .zip(&films)
+        .map(|(name, film)| {
+            stats.merge(&film.stats);
+            (*name, film.to_image(1.0 / n))
+        })
+        .collect();
+    let total_paths = passes as u64 * npix as u64 * (paths.camera as u64 + paths.light as u64);
+    let elapsed = start.elapsed();
     RenderResult {
-        image,
-        layers,
+        image: layer_images[0].1.clone(),
+        layers: layer_images,
         passes,
-        paths,
-        elapsed: start.elapsed(),
-        timings,
+        paths: total_paths,
+        elapsed,
+        timings: Timings {
+            maps: guidance.timings.clone(),
+            tracing,
+            total: elapsed,
+        },
         stats,
         camera_guide,
         light_guide,
-        maps: map_summaries,
+        maps: guidance.summaries.clone(),
     }
 }

@@ -5,14 +5,15 @@
 //! (`mesh[2].transform.scale`); OBJ vertices that are NaN or infinite name their line.
 //! Degenerate triangles are skipped and counted.
 
-use crate::camera::Camera;
+use crate::bsdf::material::{Material, MaterialKind};
 use crate::error::{Error, Result};
-use crate::geometry::{TriangleGeom, TriangleShading};
-use crate::light::Light;
-use crate::material::{Material, MaterialKind};
 use crate::math::{Frame, Rgb};
-use crate::scene::{INTEGRATORS, LoadStats, MapSettings, RenderSettings, Scene};
-use crate::texture::Texture;
+use crate::scene::camera::Camera;
+use crate::scene::geometry::{TriangleGeom, TriangleShading};
+use crate::scene::light::Light;
+use crate::scene::texture::Texture;
+use crate::scene::{LoadStats, Scene};
+use crate::settings::{GuideParams, MapSettings, Named, RenderSettings};
 use glam::{Mat3, Mat4, Vec2, Vec3};
 use serde::Deserialize;
 use std::cell::RefCell;
@@ -27,9 +28,9 @@ struct SceneFile {
     #[serde(default)]
     render: RenderDesc,
     #[serde(default)]
-    maps: MapsDesc,
+    maps: MapSettings,
     #[serde(default)]
-    guide: GuideDesc,
+    guide: GuideParams,
     #[serde(default)]
     mesh: Vec<MeshDesc>,
     #[serde(default)]
@@ -51,35 +52,16 @@ fn default_up() -> [f32; 3] {
     [0.0, 1.0, 0.0]
 }
 
+/// The `[render]` table as written: names keep their place for error messages.
 #[derive(Deserialize, Debug, Default)]
 #[serde(deny_unknown_fields)]
 struct RenderDesc {
-    integrator: Option<String>,
-    guide: Option<String>,
+    integrator: Option<toml::Spanned<String>>,
+    guide: Option<toml::Spanned<String>>,
     spp: Option<u32>,
     time: Option<f64>,
     max_depth: Option<u32>,
     seed: Option<u64>,
-}
-
-#[derive(Deserialize, Debug, Default)]
-#[serde(deny_unknown_fields)]
-struct GuideDesc {
-    k_p: Option<usize>,
-    k_g: Option<usize>,
-    k_r: Option<f32>,
-    p_bsdf: Option<f32>,
-    radius_rule: Option<String>,
-    grid: Option<usize>,
-}
-
-#[derive(Deserialize, Debug, Default)]
-#[serde(deny_unknown_fields)]
-struct MapsDesc {
-    photons: Option<usize>,
-    importons: Option<usize>,
-    max_dist: Option<f32>,
-    soft_glossy_max: Option<f32>,
 }
 
 #[derive(Deserialize, Debug)]
@@ -166,25 +148,8 @@ fn non_negative3(path: &Path, field: &str, v: [f32; 3]) -> Result<Vec3> {
     Ok(v)
 }
 
-/// Loads a scene file: footprint's TOML (`.toml`) or Mitsuba 3 XML (`.xml`).
-pub fn load_scene(path: &Path) -> Result<Scene> {
-    load_scene_with(path, &crate::mitsuba::ImportOptions::default())
-}
-
-/// Loads a scene file; `opts` applies to Mitsuba 3 XML scenes (`-D`, `--lenient`).
-pub fn load_scene_with(path: &Path, opts: &crate::mitsuba::ImportOptions) -> Result<Scene> {
-    if path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("xml"))
-    {
-        return crate::mitsuba::load(path, opts);
-    }
-    if !opts.defines.is_empty() {
-        return Err(Error::invalid(
-            path,
-            "-D overrides Mitsuba XML parameters; this is not an .xml scene",
-        ));
-    }
+/// Loads a TOML scene file (the format of the README's "Scene format").
+pub fn load(path: &Path) -> Result<Scene> {
     let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
         path: path.to_path_buf(),
         source,
@@ -199,10 +164,10 @@ pub fn load_scene_with(path: &Path, opts: &crate::mitsuba::ImportOptions) -> Res
         }
     })?;
     let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
-    build_scene(path, &dir, file)
+    build_scene(path, &text, &dir, file)
 }
 
-fn build_scene(path: &Path, dir: &Path, file: SceneFile) -> Result<Scene> {
+fn build_scene(path: &Path, text: &str, dir: &Path, file: SceneFile) -> Result<Scene> {
     // ---- Camera ----
     let c = &file.camera;
     let camera = Camera::new(
@@ -216,59 +181,28 @@ fn build_scene(path: &Path, dir: &Path, file: SceneFile) -> Result<Scene> {
     .map_err(|m| Error::invalid(path, m))?;
 
     // ---- Render settings ----
-    let mut settings = RenderSettings::default();
     let r = &file.render;
-    if let Some(i) = &r.integrator {
-        if !INTEGRATORS.contains(&i.as_str()) {
-            return Err(Error::invalid(
-                path,
-                format!(
-                    "render.integrator: unknown integrator '{i}' (expected one of {})",
-                    INTEGRATORS.join(", ")
-                ),
-            ));
-        }
-        settings.integrator = i.clone();
-    }
-    if let Some(g) = &r.guide {
-        if !crate::scene::GUIDES.contains(&g.as_str()) {
-            return Err(Error::invalid(
-                path,
-                format!(
-                    "render.guide: unknown guide '{g}' (expected one of {})",
-                    crate::scene::GUIDES.join(", ")
-                ),
-            ));
-        }
-        settings.guide = g.clone();
-    }
-    if let Some(s) = r.spp {
-        if s == 0 {
-            return Err(Error::invalid(path, "render.spp must be at least 1"));
-        }
-        settings.spp = s;
-    }
-    if let Some(t) = r.time {
-        if !(t.is_finite() && t > 0.0) {
-            return Err(Error::invalid(
-                path,
-                format!("render.time must be a positive number of seconds, got {t}"),
-            ));
-        }
-        settings.time = Some(t);
-    }
-    if let Some(d) = r.max_depth {
-        if d == 0 || d > 1024 {
-            return Err(Error::invalid(
-                path,
-                format!("render.max_depth must be in 1..=1024, got {d}"),
-            ));
-        }
-        settings.max_depth = d;
-    }
-    if let Some(s) = r.seed {
-        settings.seed = s;
-    }
+    let named = |n: &Option<toml::Spanned<String>>| {
+        n.as_ref().map(|n| {
+            let (line, column) = line_col(text, n.span().start);
+            Named {
+                name: n.get_ref().clone(),
+                at: format!("{}:{line}:{column}", path.display()),
+            }
+        })
+    };
+    let defaults = RenderSettings::default();
+    let settings = RenderSettings {
+        integrator: named(&r.integrator),
+        guide: named(&r.guide),
+        spp: r.spp.unwrap_or(defaults.spp),
+        time: r.time,
+        max_depth: r.max_depth.unwrap_or(defaults.max_depth),
+        seed: r.seed.unwrap_or(defaults.seed),
+    };
+    settings
+        .validate()
+        .map_err(|e| Error::invalid(path, e.to_string()))?;
 
     // ---- Meshes ----
     let mut triangles = Vec::new();
@@ -336,67 +270,27 @@ fn build_scene(path: &Path, dir: &Path, file: SceneFile) -> Result<Scene> {
                     intensity: non_negative3(path, &format!("{field}.intensity"), *intensity)?,
                     cos_inner: inner_angle.to_radians().cos(),
                     cos_outer: outer_angle.to_radians().cos(),
-                    profile: crate::light::SpotProfile::Smoothstep,
+                    profile: crate::scene::light::SpotProfile::Smoothstep,
                 }
             }
         });
     }
 
-    // ---- Particle maps ----
-    let mut maps = MapSettings::default();
-    let m = &file.maps;
-    if let Some(v) = m.photons {
-        maps.photons = v;
-    }
-    if let Some(v) = m.importons {
-        maps.importons = v;
-    }
-    if m.max_dist.is_some() {
-        maps.max_dist = m.max_dist;
-    }
-    if let Some(v) = m.soft_glossy_max {
-        maps.soft_glossy_max = v;
-    }
-    maps.validate()
-        .map_err(|e| Error::invalid(path, format!("maps.{e}")))?;
-
-    // ---- Direction samplers ----
-    let mut guide = crate::direction_sampler::GuideParams::default();
-    let g = &file.guide;
-    if let Some(v) = g.k_p {
-        guide.k_p = v;
-    }
-    if let Some(v) = g.k_g {
-        guide.k_g_side = v;
-    }
-    if let Some(v) = g.k_r {
-        guide.k_r = v;
-    }
-    if let Some(v) = g.p_bsdf {
-        guide.p_bsdf = v;
-    }
-    if let Some(v) = &g.radius_rule {
-        guide.radius_rule = crate::direction_sampler::RadiusRule::parse(v).ok_or_else(|| {
-            Error::invalid(
-                path,
-                format!("guide.radius_rule: unknown rule '{v}' (expected solid-angle or literal)"),
-            )
-        })?;
-    }
-    if let Some(v) = g.grid {
-        guide.grid_side = v;
-    }
-    guide
+    // ---- Particle maps and direction samplers ----
+    file.maps
         .validate()
-        .map_err(|e| Error::invalid(path, format!("guide.{e}")))?;
+        .map_err(|e| Error::invalid(path, e.to_string()))?;
+    file.guide
+        .validate()
+        .map_err(|e| Error::invalid(path, e.to_string()))?;
 
     stats.triangles = triangles.len();
     let mut scene = Scene::new(
         camera, triangles, shading, materials, textures, lights, settings, stats,
     )
     .map_err(|m| Error::invalid(path, m))?;
-    scene.maps = maps;
-    scene.guide = guide;
+    scene.maps = file.maps;
+    scene.guide = file.guide;
     Ok(scene)
 }
 
@@ -504,51 +398,6 @@ fn apply_override(mut m: Material, o: &MaterialOverride) -> Material {
     m.sanitized()
 }
 
-/// Scans OBJ text for vertex lines with non-finite coordinates; returns the first line.
-/// Degenerate: zero (or non-finite) area, or so thin that its normal is noise.
-pub(crate) fn is_degenerate(geom: &TriangleGeom) -> bool {
-    let len = geom.cross().length();
-    let longest = geom
-        .e1
-        .length()
-        .max(geom.e2.length())
-        .max((geom.e2 - geom.e1).length());
-    !(len.is_finite() && len > 0.0 && len > 1e-10 * longest * longest)
-}
-
-/// An OBJ file's text, checked for vertex coordinates that are not finite numbers (which
-/// tobj would read as NaN).
-pub(crate) fn read_obj_text(obj_path: &Path) -> Result<String> {
-    let text = std::fs::read_to_string(obj_path).map_err(|source| Error::Io {
-        path: obj_path.to_path_buf(),
-        source,
-    })?;
-    if let Some((line, tok)) = find_bad_vertex(&text) {
-        return Err(Error::Syntax {
-            path: obj_path.to_path_buf(),
-            line,
-            column: 1,
-            message: format!("vertex coordinate '{tok}' is not a finite number"),
-        });
-    }
-    Ok(text)
-}
-
-fn find_bad_vertex(text: &str) -> Option<(usize, String)> {
-    for (i, line) in text.lines().enumerate() {
-        let l = line.trim_start();
-        if let Some(rest) = l.strip_prefix("v ").or_else(|| l.strip_prefix("v\t")) {
-            for tok in rest.split_whitespace().take(3) {
-                match tok.parse::<f32>() {
-                    Ok(x) if x.is_finite() => {}
-                    _ => return Some((i + 1, tok.to_string())),
-                }
-            }
-        }
-    }
-    None
-}
-
 #[allow(clippy::too_many_arguments)]
 fn load_obj(
     obj_path: &Path,
@@ -561,7 +410,7 @@ fn load_obj(
     texture_ids: &mut HashMap<PathBuf, u32>,
     stats: &mut LoadStats,
 ) -> Result<()> {
-    let text = read_obj_text(obj_path)?;
+    let text = crate::scene::obj::read_obj_text(obj_path)?;
     let obj_dir = obj_path.parent().unwrap_or(Path::new(".")).to_path_buf();
     let mtl_error: RefCell<Option<Error>> = RefCell::new(None);
     let opts = tobj::LoadOptions {
@@ -669,7 +518,7 @@ fn load_obj(
                 });
             };
             let geom = TriangleGeom::new(p0, p1, p2);
-            if is_degenerate(&geom) {
+            if crate::scene::obj::is_degenerate(&geom) {
                 stats.degenerate_skipped += 1;
                 continue;
             }

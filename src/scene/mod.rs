@@ -1,108 +1,32 @@
 //! The scene: triangles with their shading data, materials, textures, lights, the camera,
-//! the BVH, the render settings from the scene file, and the effect analysis.
+//! the BVH, the settings from the scene file, and the effect analysis. Its parts and
+//! loaders are the submodules: geometry and the BVH, the camera, lights, textures, the
+//! effect analysis, and the TOML/OBJ and Mitsuba 3 XML loaders behind [`load`].
 
+pub mod bvh;
+pub mod camera;
+pub mod effects;
+pub mod geometry;
+pub mod light;
+pub mod load;
+pub mod mitsuba;
+pub mod obj;
+pub mod texture;
+pub mod toml_file;
+
+use crate::bsdf::material::Material;
 use crate::bsdf::{Bsdf, Lobes};
-use crate::bvh::Bvh;
-use crate::camera::Camera;
-use crate::effects::Effects;
-use crate::geometry::{SurfaceHit, TriangleGeom, TriangleShading, offset_ray_origin, spawn_origin};
-use crate::light::Light;
-use crate::material::Material;
 use crate::sampling::Distribution1D;
-use crate::texture::Texture;
+use crate::scene::bvh::Bvh;
+use crate::scene::camera::Camera;
+use crate::scene::effects::Effects;
+use crate::scene::geometry::{
+    SurfaceHit, TriangleGeom, TriangleShading, offset_ray_origin, spawn_origin,
+};
+use crate::scene::light::Light;
+use crate::scene::texture::Texture;
+use crate::settings::{GuideParams, MapSettings, RenderSettings};
 use glam::{Vec2, Vec3};
-
-/// Integrators the scene file and the command line accept.
-pub const INTEGRATORS: &[&str] = &["pt", "lt", "combined"];
-
-/// Direction samplers the scene file and the command line accept.
-pub const GUIDES: &[&str] = &["bsdf", "grid", "footprint"];
-
-/// Render settings read from the scene file (the command line may override them).
-#[derive(Clone, Debug)]
-pub struct RenderSettings {
-    pub integrator: String,
-    /// Direction sampler: bsdf, grid or footprint.
-    pub guide: String,
-    /// Samples per pixel (path tracing) or light paths per pixel (light tracing).
-    pub spp: u32,
-    /// Time budget in seconds; when set it replaces `spp`.
-    pub time: Option<f64>,
-    /// Maximum number of path segments.
-    pub max_depth: u32,
-    pub seed: u64,
-}
-
-impl Default for RenderSettings {
-    fn default() -> Self {
-        RenderSettings {
-            integrator: "pt".into(),
-            guide: "bsdf".into(),
-            spp: 16,
-            time: None,
-            max_depth: 8,
-            seed: 0,
-        }
-    }
-}
-
-/// Particle-map settings read from the scene file's `[maps]` table (the command line may
-/// override them).
-#[derive(Clone, Debug)]
-pub struct MapSettings {
-    /// Photon paths shot by the light pass.
-    pub photons: usize,
-    /// Importon paths shot by the view pass.
-    pub importons: usize,
-    /// Maximum distance of a particle from a query point; `None`: 5% of the scene's
-    /// bounding-box diagonal.
-    pub max_dist: Option<f32>,
-    /// Blinn exponents up to this are "soft glossy" (particles stored, footprints used);
-    /// above it "strongly glossy" (treated like specular).
-    pub soft_glossy_max: f32,
-}
-
-impl Default for MapSettings {
-    fn default() -> Self {
-        MapSettings {
-            photons: 200_000,
-            importons: 200_000,
-            max_dist: None,
-            soft_glossy_max: 100.0,
-        }
-    }
-}
-
-/// Largest particle path count accepted (each path may store several particles).
-pub const MAX_MAP_PATHS: usize = 50_000_000;
-
-impl MapSettings {
-    /// Checks the settings; the error names the offending field.
-    pub fn validate(&self) -> Result<(), String> {
-        for (name, n) in [("photons", self.photons), ("importons", self.importons)] {
-            if n == 0 {
-                return Err(format!("{name} must be at least 1"));
-            }
-            if n > MAX_MAP_PATHS {
-                return Err(format!(
-                    "{name} = {n} is absurd: at most {MAX_MAP_PATHS} paths"
-                ));
-            }
-        }
-        if let Some(d) = self.max_dist {
-            if !(d.is_finite() && d > 0.0) {
-                return Err(format!("max_dist must be a positive distance, got {d}"));
-            }
-        }
-        if !(self.soft_glossy_max.is_finite() && self.soft_glossy_max >= 0.0) {
-            return Err(format!(
-                "soft_glossy_max must be finite and >= 0, got {}",
-                self.soft_glossy_max
-            ));
-        }
-        Ok(())
-    }
-}
 
 /// Counts reported after loading.
 #[derive(Clone, Debug, Default)]
@@ -124,7 +48,7 @@ pub struct Scene {
     pub bvh: Bvh,
     pub settings: RenderSettings,
     pub maps: MapSettings,
-    pub guide: crate::direction_sampler::GuideParams,
+    pub guide: GuideParams,
     pub effects: Effects,
     pub stats: LoadStats,
     /// Scene bounding box.
@@ -224,7 +148,7 @@ impl Scene {
             bvh,
             settings,
             maps: MapSettings::default(),
-            guide: crate::direction_sampler::GuideParams::default(),
+            guide: GuideParams::default(),
             effects,
             stats,
             bounds: (lo, hi),

@@ -1,8 +1,12 @@
-//! The film: per-pixel accumulation with a box filter, and the splat films light tracing
-//! writes into. Every value is checked where it is accumulated: a NaN, infinite or negative
-//! sample never reaches a pixel; it is counted and dropped.
+//! The film: per-pixel accumulation, the splat lists light tracing writes into, the pixel
+//! filters ([`filter`]) and image files ([`image_io`]). Every value is checked where it is
+//! accumulated: a NaN, infinite or negative sample never reaches a pixel; it is counted and
+//! dropped.
 
-use crate::filter::PixelFilter;
+pub mod filter;
+pub mod image_io;
+
+use crate::film::filter::PixelFilter;
 use crate::math::{Rgb, is_valid_rgb, luminance};
 use glam::Vec2;
 

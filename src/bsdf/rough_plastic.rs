@@ -9,8 +9,7 @@
 //! a fraction of a second, so they are made once per `(distribution, α, η)` and shared:
 //! [`RoughPlasticTables::get`] caches them for the life of the process.
 
-use crate::material::Microfacet;
-use crate::microfacet::{MicrofacetDistribution, gauss_legendre_01};
+use crate::bsdf::microfacet::{Microfacet, MicrofacetDistribution, gauss_legendre_01};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::{Mutex, OnceLock};
@@ -52,7 +51,7 @@ impl RoughPlasticTables {
     /// True when these are the tables of `(kind, alpha, eta)` (`alpha` as given, unclamped).
     pub fn matches(&self, kind: Microfacet, alpha: f32, eta: f32) -> bool {
         self.kind == kind
-            && self.alpha == alpha.max(crate::microfacet::ALPHA_MIN)
+            && self.alpha == alpha.max(crate::bsdf::microfacet::ALPHA_MIN)
             && self.eta == eta
     }
 

@@ -1,9 +1,9 @@
 //! Scene analysis: which light-transport effects a scene contains, so that the passes and
 //! code paths for absent effects are skipped rather than run idle.
 
-use crate::geometry::TriangleShading;
-use crate::light::Light;
-use crate::material::{Material, MaterialKind};
+use crate::bsdf::material::{Material, MaterialKind};
+use crate::scene::geometry::TriangleShading;
+use crate::scene::light::Light;
 
 /// The effects a scene calls for.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]

@@ -117,6 +117,22 @@ struct DensityGrid {
 /// The axis of each normal bucket.
 const BUCKET_AXES: [Vec3; 6] = crate::math::SIGNED_AXES;
 
+/// The bucket of a normal: its dominant axis and sign, as an index into
+/// [`crate::math::SIGNED_AXES`] (the count grid's buckets and the guide cache's regions).
+#[inline]
+pub fn normal_bucket(n: Vec3) -> usize {
+    let a = n.abs();
+    if a.x >= a.y && a.x >= a.z {
+        if n.x >= 0.0 { 0 } else { 1 }
+    } else if a.y >= a.z {
+        if n.y >= 0.0 { 2 } else { 3 }
+    } else if n.z >= 0.0 {
+        4
+    } else {
+        5
+    }
+}
+
 impl DensityGrid {
     fn build(particles: &[(Vec3, Vec3)], lo: Vec3, hi: Vec3) -> Self {
         let extent = (hi - lo).max(Vec3::splat(1e-6));
@@ -145,24 +161,10 @@ impl DensityGrid {
         };
         for (p, n) in particles {
             let i = g.index(g.cell_of(*p));
-            let b = Self::bucket(*n);
+            let b = normal_bucket(*n);
             g.counts[i][b] = g.counts[i][b].saturating_add(1);
         }
         g
-    }
-
-    /// The bucket of a normal: its dominant axis and sign.
-    fn bucket(n: Vec3) -> usize {
-        let a = n.abs();
-        if a.x >= a.y && a.x >= a.z {
-            if n.x >= 0.0 { 0 } else { 1 }
-        } else if a.y >= a.z {
-            if n.y >= 0.0 { 2 } else { 3 }
-        } else if n.z >= 0.0 {
-            4
-        } else {
-            5
-        }
     }
 
     /// Buckets that can hold a particle whose normal is within the query cone of `n`
@@ -261,67 +263,19 @@ const PI_F32: f32 = std::f32::consts::PI;
 
 // ---- Encodings ----
 
-/// Signed f32 to binary16 bits (sign bit and [`f32_to_f16`] of the magnitude).
-pub fn f32_to_f16_signed(x: f32) -> u16 {
-    if x < 0.0 {
-        0x8000 | f32_to_f16(-x)
-    } else {
-        f32_to_f16(x)
-    }
-}
-
-/// Binary16 bits with a sign to f32.
-pub fn f16_to_f32_signed(h: u16) -> f32 {
-    let m = f16_to_f32(h & 0x7fff);
-    if h & 0x8000 != 0 { -m } else { m }
-}
-
-/// f32 to IEEE 754 binary16 bits, round to nearest even; saturates at the largest finite
-/// half, flushes below the smallest subnormal to zero. Negative and NaN inputs become 0.
-pub fn f32_to_f16(x: f32) -> u16 {
+/// A weight (non-negative, finite) as half-float bits; negative and NaN become 0, values
+/// beyond the half range saturate at its largest finite value.
+pub fn weight_to_f16(x: f32) -> u16 {
     if !(x > 0.0) {
         return 0;
     }
-    if x >= 65504.0 {
-        return 0x7bff;
-    }
-    let bits = x.to_bits();
-    let exp = ((bits >> 23) & 0xff) as i32 - 127 + 15;
-    let mant = bits & 0x7f_ffff;
-    if exp >= 1 {
-        // Normal: keep 10 mantissa bits, round to nearest even.
-        let mut h = ((exp as u32) << 10) | (mant >> 13);
-        let rest = mant & 0x1fff;
-        if rest > 0x1000 || (rest == 0x1000 && (h & 1) == 1) {
-            h += 1;
-        }
-        h.min(0x7bff) as u16
-    } else if exp >= -10 {
-        // Subnormal half.
-        let m = mant | 0x80_0000;
-        let shift = (14 - exp) as u32;
-        let mut h = m >> shift;
-        let rest = m & ((1 << shift) - 1);
-        let half = 1 << (shift - 1);
-        if rest > half || (rest == half && (h & 1) == 1) {
-            h += 1;
-        }
-        h as u16
-    } else {
-        0
-    }
+    half::f16::from_f32(x.min(65504.0)).to_bits()
 }
 
-/// IEEE 754 binary16 bits to f32 (finite values only, as [`f32_to_f16`] writes).
+/// Half-float bits to f32.
 #[inline]
 pub fn f16_to_f32(h: u16) -> f32 {
-    let exp = ((h >> 10) & 0x1f) as u32;
-    let mant = (h & 0x3ff) as u32;
-    if exp == 0 {
-        mant as f32 * (1.0 / 16_777_216.0) // subnormal: mant · 2^-24
-    } else {
-        f32::from_bits(((exp + 127 - 15) << 23) | (mant << 13))
-    }
+    half::f16::from_bits(h).to_f32()
 }
 
 /// Octahedral mapping of a unit vector to `[-1, 1]²` (Cigolle et al. 2014).
@@ -419,11 +373,14 @@ impl ParticleMap {
                 dir: encode_dir16(p.dir),
                 normal: encode_dir8(p.normal),
                 weight: [
-                    f32_to_f16(p.weight.x / scale),
-                    f32_to_f16(p.weight.y / scale),
-                    f32_to_f16(p.weight.z / scale),
+                    weight_to_f16(p.weight.x / scale),
+                    weight_to_f16(p.weight.y / scale),
+                    weight_to_f16(p.weight.z / scale),
                 ],
-                plane: f32_to_f16_signed(p.normal.dot(p.position - centre)),
+                plane: half::f16::from_f32(
+                    p.normal.dot(p.position - centre).clamp(-65504.0, 65504.0),
+                )
+                .to_bits(),
             })
             .collect();
         let points: Vec<[f32; 3]> = valid.iter().map(|p| p.position.to_array()).collect();
@@ -483,7 +440,7 @@ impl ParticleMap {
     /// Distance of `x` from particle `i`'s tangent plane (as stored, in half precision).
     pub fn plane_distance(&self, i: u32, x: Vec3) -> f32 {
         let (_, normal, _) = self.get(i);
-        (normal.dot(x - self.centre) - f16_to_f32_signed(self.records[i as usize].plane)).abs()
+        (normal.dot(x - self.centre) - f16_to_f32(self.records[i as usize].plane)).abs()
     }
 
     /// The `k` nearest particles to `x` within `max_dist` that face the query normal `n`
@@ -513,7 +470,7 @@ impl ParticleMap {
             let rec = &self.records[i as usize];
             let normal = decode_dir8(rec.normal);
             normal.dot(n) >= NORMAL_COS_MIN
-                && (normal.dot(xc) - f16_to_f32_signed(rec.plane)).abs() <= plane
+                && (normal.dot(xc) - f16_to_f32(rec.plane)).abs() <= plane
         };
         // Unsorted radius searches, from a radius expected to hold about 2k particles
         // (the density grid), growing until k admissible ones are found or the maximum

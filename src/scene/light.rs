@@ -15,12 +15,12 @@
 //! sphere facing the sampled direction (pbrt-v4's `UniformInfiniteLight::SampleLe`), so
 //! `pdf_pos` is per unit area of that disk and its flux is `π r² · 4π · L`.
 
-use crate::geometry::TriangleGeom;
 use crate::math::{Frame, PI, Rgb, luminance};
 use crate::sampling::{
     cosine_hemisphere_pdf, sample_cosine_hemisphere, sample_uniform_sphere,
     sample_uniform_triangle, uniform_sphere_pdf,
 };
+use crate::scene::geometry::TriangleGeom;
 use glam::{Vec2, Vec3};
 
 #[derive(Clone, Debug)]

@@ -25,11 +25,17 @@
 //! transmitted) by Gauss-Legendre quadrature over the visible-normal sample space, as
 //! Mitsuba's `eval_reflectance` / `eval_transmittance` do for `roughplastic`.
 
-use crate::fresnel::fresnel_dielectric;
-use crate::material::Microfacet;
+use crate::bsdf::fresnel::fresnel_dielectric;
 use crate::math::{PI, safe_sqrt};
 use crate::sampling::sample_concentric_disk;
 use glam::{Vec2, Vec3};
+
+/// Microfacet normal distribution of the rough kinds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Microfacet {
+    Beckmann,
+    Ggx,
+}
 
 /// Smallest roughness (Mitsuba clamps to the same).
 pub const ALPHA_MIN: f32 = 1e-4;

@@ -20,15 +20,17 @@ mod xml;
 pub use shapes::MeshData;
 
 use crate::Rgb;
-use crate::camera::Camera;
+use crate::bsdf::material::{Material, MaterialKind};
+use crate::bsdf::microfacet::Microfacet;
 use crate::error::{Error, Result};
-use crate::filter::{FilterKind, PixelFilter};
-use crate::geometry::{TriangleGeom, TriangleShading};
-use crate::light::Light;
-use crate::material::{Material, MaterialKind, Microfacet};
+use crate::film::filter::{FilterKind, PixelFilter};
 use crate::math::Frame;
-use crate::scene::{LoadStats, RenderSettings, Scene};
-use crate::texture::Texture;
+use crate::scene::camera::Camera;
+use crate::scene::geometry::{TriangleGeom, TriangleShading};
+use crate::scene::light::Light;
+use crate::scene::texture::Texture;
+use crate::scene::{LoadStats, Scene};
+use crate::settings::{Named, RenderSettings};
 use glam::{Affine2, Mat3, Mat4, Vec2, Vec3};
 use roxmltree::{Node, NodeId};
 use std::collections::HashMap;
@@ -154,7 +156,12 @@ pub fn load(path: &Path, opts: &ImportOptions) -> Result<Scene> {
         .camera
         .take()
         .ok_or_else(|| Error::invalid(path, "the scene has no <sensor>"))?;
-    if b.settings.integrator == "lt" && b.lights.iter().any(|l| l.is_environment()) {
+    if b.settings
+        .integrator
+        .as_ref()
+        .is_some_and(|i| i.name == "lt")
+        && b.lights.iter().any(|l| l.is_environment())
+    {
         doc.notes.borrow_mut().push(format!(
             "{}: ptracer with a constant emitter: footprint's light tracer does not see the environment directly (the background stays black); --integrator pt or combined show it",
             path.display()
@@ -260,12 +267,22 @@ impl<'a, 'd> Builder<'a, 'd> {
 
     // ---- integrator, sensor ----
 
+    /// A method name given by `node`, with its place for error messages.
+    fn named(&self, node: Node, name: &str) -> Named {
+        let (line, column) = self.doc.pos(node);
+        Named {
+            name: name.into(),
+            at: format!("{}:{line}:{column}", self.doc.path.display()),
+        }
+    }
+
     fn integrator(&mut self, node: Node<'a, 'a>) -> Result<()> {
         let kind = self.kind(node)?;
         let p = Props::new(self.doc, node)?;
         match kind.as_str() {
             "path" | "ptracer" => {
-                self.settings.integrator = if kind == "path" { "pt" } else { "lt" }.into();
+                self.settings.integrator =
+                    Some(self.named(node, if kind == "path" { "pt" } else { "lt" }));
             }
             other => {
                 self.doc.unsupported(
@@ -274,7 +291,7 @@ impl<'a, 'd> Builder<'a, 'd> {
                     "path, ptracer",
                     "footprint's path tracer",
                 )?;
-                self.settings.integrator = "pt".into();
+                self.settings.integrator = Some(self.named(node, "pt"));
                 return Ok(());
             }
         }
@@ -1035,7 +1052,7 @@ impl<'a, 'd> Builder<'a, 'd> {
             let [i0, i1, i2] = f.map(|i| i as usize);
             let (i0, i2) = if flip != rewind { (i2, i0) } else { (i0, i2) };
             let geom = TriangleGeom::new(pos[i0], pos[i1], pos[i2]);
-            if crate::loader::is_degenerate(&geom) {
+            if crate::scene::obj::is_degenerate(&geom) {
                 self.stats.degenerate_skipped += 1;
                 continue;
             }

@@ -7,7 +7,7 @@
 //! §10.3.3; pbrt-v4 `PerspectiveCamera::We`), so a pixel's box-filter importance is
 //! `W_e · pixel_count` inside that pixel.
 
-use crate::filter::PixelFilter;
+use crate::film::filter::PixelFilter;
 use crate::math::Frame;
 use glam::{Vec2, Vec3};
 

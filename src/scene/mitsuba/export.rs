@@ -12,11 +12,12 @@
 //! Mitsuba's definitions, so a comparison of the two renderers on it is exact either way.
 
 use crate::Rgb;
+use crate::bsdf::material::{Material, MaterialKind};
+use crate::bsdf::microfacet::Microfacet;
 use crate::error::{Error, Result};
-use crate::light::{Light, SpotProfile};
-use crate::material::{Material, MaterialKind, Microfacet};
 use crate::scene::Scene;
-use crate::texture::TextureKind;
+use crate::scene::light::{Light, SpotProfile};
+use crate::scene::texture::TextureKind;
 use glam::{Vec2, Vec3};
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -67,12 +68,12 @@ pub fn export(scene: &Scene, source: &Path, out: &Path) -> Result<ExportNotes> {
         source.display()
     );
     let (filter, filter_param) = match cam.filter.kind {
-        crate::filter::FilterKind::Box => ("box", String::new()),
-        crate::filter::FilterKind::Tent { radius } => (
+        crate::film::filter::FilterKind::Box => ("box", String::new()),
+        crate::film::filter::FilterKind::Tent { radius } => (
             "tent",
             format!("<float name=\"radius\" value=\"{radius:?}\"/>"),
         ),
-        crate::filter::FilterKind::Gaussian { stddev } => (
+        crate::film::filter::FilterKind::Gaussian { stddev } => (
             "gaussian",
             format!("<float name=\"stddev\" value=\"{stddev:?}\"/>"),
         ),
@@ -117,8 +118,8 @@ pub fn export(scene: &Scene, source: &Path, out: &Path) -> Result<ExportNotes> {
     // The filter's parameter is written only when it is not the default (a -D rfilter of
     // another type must not inherit it).
     let filter_param = match cam.filter.kind {
-        crate::filter::FilterKind::Tent { radius } if radius != 1.0 => filter_param,
-        crate::filter::FilterKind::Gaussian { stddev } if stddev != 0.5 => filter_param,
+        crate::film::filter::FilterKind::Tent { radius } if radius != 1.0 => filter_param,
+        crate::film::filter::FilterKind::Gaussian { stddev } if stddev != 0.5 => filter_param,
         _ => String::new(),
     };
     let _ = writeln!(
@@ -260,7 +261,7 @@ fn colour_or_texture(
             for (i, p) in img.pixels_mut().enumerate() {
                 let c = texels[i];
                 let e = |v: f32| {
-                    (crate::image_io::linear_to_srgb(v).clamp(0.0, 1.0) * 255.0).round() as u8
+                    (crate::film::image_io::linear_to_srgb(v).clamp(0.0, 1.0) * 255.0).round() as u8
                 };
                 *p = image::Rgb([e(c.x), e(c.y), e(c.z)]);
             }

@@ -20,9 +20,9 @@
 //! (`eval` there includes the cosine, here it does not):
 //!
 //! * `conductor`: a mirror of weight `k_s F_c(cos θ)`, `F_c` the conductor Fresnel term of
-//!   `η + i k` ([`crate::fresnel`]);
+//!   `η + i k` ([`crate::bsdf::fresnel`]);
 //! * `roughconductor`: `k_s F_c(wo·h) D(h) G(wo, wi) / (4 cos θ_o cos θ_i)` with the
-//!   distributions of [`crate::microfacet`], sampled by visible normals;
+//!   distributions of [`crate::bsdf::microfacet`], sampled by visible normals;
 //! * `plastic`: a mirror of weight `k_s F(cos θ_o)` over a Lambertian base seen through the
 //!   interface, `f = k_d' (1 - F(cos θ_o)) (1 - F(cos θ_i)) / (π η²)` with
 //!   `k_d' = k_d / (1 - F_dr)` (`k_d / (1 - k_d F_dr)` when `nonlinear`), `F_dr` the diffuse
@@ -32,7 +32,7 @@
 //! * `roughplastic`: the microfacet reflection of a dielectric, `k_s F(wo·h) D G / (4 cos
 //!   cos)`, plus the base `k_d' t(cos θ_o) t(cos θ_i) / (π η²)`, `t` the coating's tabled
 //!   transmittance and `k_d'` divided by its tabled internal reflectance
-//!   ([`crate::rough_plastic`]); lobe probabilities as plastic with `1 - t` for `F`;
+//!   ([`crate::bsdf::rough_plastic`]); lobe probabilities as plastic with `1 - t` for `F`;
 //! * `thindielectric`: reflection `R' = 2R/(1 + R)` (the sheet's inner reflections summed),
 //!   straight transmission `1 - R'` (`wi = -wo`), with `k_s` and `T_f` as factors and no
 //!   `1/η²` (the ray leaves into the medium it came from).
@@ -42,15 +42,20 @@
 //! both directions are above the shading normal, as Mitsuba evaluates it. Glass and thin
 //! glass scatter on both sides regardless.
 
-use crate::fresnel::fresnel_diffuse_reflectance;
-use crate::material::{Material, MaterialKind};
+pub mod fresnel;
+pub mod material;
+pub mod microfacet;
+pub mod rough_plastic;
+
+use crate::bsdf::fresnel::fresnel_diffuse_reflectance;
+use crate::bsdf::material::{Material, MaterialKind};
+use crate::bsdf::microfacet::MicrofacetDistribution;
+use crate::bsdf::rough_plastic::RoughPlasticTables;
 use crate::math::{Frame, INV_PI, PI, Rgb, luminance, safe_sqrt};
-use crate::microfacet::MicrofacetDistribution;
-use crate::rough_plastic::RoughPlasticTables;
 use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use glam::{Vec2, Vec3};
 
-pub use crate::fresnel::{fresnel_conductor, fresnel_dielectric};
+pub use crate::bsdf::fresnel::{fresnel_conductor, fresnel_dielectric};
 
 /// Which quantity a path carries: radiance (paths from the camera) or importance (paths
 /// from the lights).
@@ -281,6 +286,23 @@ impl Lobes {
                 | Lobes::Conductor { .. }
                 | Lobes::ThinGlass { .. }
         )
+    }
+
+    /// The lobes' reflectance colour, per channel (kd + ks for the layered kinds): the factor
+    /// by which a guide weighs particles of each colour channel at this surface (an
+    /// approximation only steers variance; guided estimates stay unbiased whatever it is).
+    pub fn colour(&self) -> Rgb {
+        match *self {
+            Lobes::Diffuse { kd } => kd,
+            Lobes::Glossy { kd, ks, .. } => kd + ks,
+            Lobes::Mirror { r } => r,
+            Lobes::Glass { tf_sqrt, .. } => tf_sqrt * tf_sqrt,
+            Lobes::Conductor { ks, .. } | Lobes::RoughConductor { ks, .. } => ks,
+            Lobes::Plastic { diffuse, ks, .. } | Lobes::RoughPlastic { diffuse, ks, .. } => {
+                diffuse + ks
+            }
+            Lobes::ThinGlass { tf, .. } => tf,
+        }
     }
 
     /// True for the kinds that scatter through the surface (they ignore sidedness).

@@ -8,12 +8,13 @@
 //! | `illum` 4, 6 or 7, or `Ni` > 1 with `Tf` set | smooth dielectric, IOR `Ni`, transmittance `Tf` |
 //! | `Ke` | emission: the faces become area lights of radiance `Ke` |
 //!
-//! Mitsuba 3 scenes (`crate::mitsuba`) add the kinds Mitsuba's BSDFs need: smooth and rough
+//! Mitsuba 3 scenes (`crate::scene::mitsuba`) add the kinds Mitsuba's BSDFs need: smooth and rough
 //! conductors with a complex index of refraction, smooth and rough plastic, and the thin
 //! dielectric sheet; the mapping is tabled in `docs/mitsuba.md`.
 
 use crate::Rgb;
-use crate::rough_plastic::RoughPlasticTables;
+use crate::bsdf::microfacet::Microfacet;
+use crate::bsdf::rough_plastic::RoughPlasticTables;
 
 /// The kind of scattering a material does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -41,13 +42,6 @@ pub enum MaterialKind {
     /// Thin dielectric sheet of IOR `ni` (Mitsuba `thindielectric`): reflection and straight
     /// transmission with the multiple internal reflections summed.
     ThinGlass,
-}
-
-/// Microfacet normal distribution of the rough kinds.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Microfacet {
-    Beckmann,
-    Ggx,
 }
 
 impl MaterialKind {

@@ -9,7 +9,7 @@
 //! every hit in front of the true origin lies in boxes the node test keeps. Directions have
 //! their negative zeros made positive (see [`canonical_zeros`]).
 
-use crate::geometry::TriangleGeom;
+use crate::scene::geometry::TriangleGeom;
 use glam::{Vec3, Vec3A};
 use obvhs::cwbvh::CwBvh;
 use obvhs::ray::{Ray as BvhRay, RayHit};

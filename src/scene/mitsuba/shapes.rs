@@ -118,7 +118,7 @@ pub fn sphere(rings: u32, segments: u32) -> MeshData {
 
 /// Reads an OBJ file's geometry (all objects and groups into one mesh).
 pub fn load_obj(path: &Path) -> Result<MeshData> {
-    let text = crate::loader::read_obj_text(path)?;
+    let text = crate::scene::obj::read_obj_text(path)?;
     let opts = tobj::LoadOptions {
         single_index: true,
         triangulate: true,

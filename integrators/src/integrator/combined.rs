@@ -1,0 +1,68 @@
+//! The combined image: in every pass one camera path and one light path per pixel, each
+//! image kept as a layer (`pt`, `lt`), and one `combined` image in which every path is
+//! weighted against the other strategies that could have made it (three-strategy power
+//! heuristic, [`crate::mis`]): the camera path's light hits and next-event connections
+//! against the light path's camera connections.
+
+use super::{Context, Integrator, Paths, light_tracing, path_tracing};
+use crate::mis::{CameraMis, LightMis};
+use footprint::Rgb;
+use footprint::film::SplatList;
+use footprint::guide::sampler::SamplerState;
+use footprint::rng::Rng;
+use glam::Vec2;
+
+/// Path tracing and light tracing combined by MIS, registered as `combined`.
+pub struct Combined;
+
+impl Integrator for Combined {
+    fn name(&self) -> &'static str {
+        "combined"
+    }
+    fn about(&self) -> &'static str {
+        "Both, and one image combining them by multiple importance sampling"
+    }
+    fn layers(&self) -> &'static [&'static str] {
+        &["combined", "pt", "lt"]
+    }
+    fn paths(&self) -> Paths {
+        Paths {
+            camera: true,
+            light: true,
+        }
+    }
+    fn camera_path<'a>(
+        &self,
+        ctx: &Context<'a>,
+        raster: Vec2,
+        rng: &mut Rng,
+        state: &mut SamplerState<'a>,
+        out: &mut [Rgb],
+    ) {
+        let cam = &ctx.scene.camera;
+        let c = path_tracing::trace(
+            ctx.scene,
+            cam.position,
+            cam.ray_dir(raster),
+            ctx.max_depth,
+            &ctx.camera_sampler,
+            state,
+            rng,
+            CameraMis::new(cam.position),
+        );
+        out[0] += c.share;
+        out[1] += c.pt;
+    }
+    fn light_path<'a>(
+        &self,
+        ctx: &Context<'a>,
+        rng: &mut Rng,
+        state: &mut SamplerState<'a>,
+        splats: &mut [SplatList],
+    ) {
+        let [combined, _, lt] = splats else {
+            return;
+        };
+        light_tracing::trace::<LightMis>(ctx, rng, state, lt, Some(combined));
+    }
+}

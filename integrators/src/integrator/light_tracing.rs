@@ -1,0 +1,247 @@
+//! Light tracing (Veach 1997, §10.3; Dutré et al. 1993), guided or not: paths start on the
+//! lights (chosen in proportion to power), every scattering direction comes from the
+//! direction sampler (BSDF, grid or footprint over the importance map), and every
+//! non-specular vertex, the light vertex included, is connected to the pinhole camera and
+//! splatted onto the film. At area lights the emission direction is guided too: the emitted
+//! cosine lobe plays the BSDF's part, and the importons that reached the light's surface
+//! (paper §2.1) give the footprints.
+//!
+//! Normalisation. With `N = n P` light paths (`n` passes of one path per each of the `P`
+//! pixels), a connection from vertex `x` with throughput `β` (flux per unit area and solid
+//! angle, divided by all pdfs so far) adds to pixel `j`
+//!
+//! `β · f(x, ω_o → ω_c) · |ω_c · n_s| · W_e(ω_c) · cos θ_c / d² · P / N`
+//!
+//! where `W_e · P` is the box-filter importance of one of the `P` pixels (see
+//! `footprint::scene::camera`). The splat is that value times `n`, so that every layer is
+//! averaged over passes like the camera paths' values.
+//!
+//! A light path can also feed a second estimate with other weights ([`LightShare`]): the
+//! combined image's share, weighted against path tracing by [`crate::mis::LightMis`].
+//! Paths from the environment stay out of it: the path tracer alone makes them there (its
+//! own two-strategy weights sum to one for them), so that the weights remain a partition
+//! of unity without an area density at infinity.
+//!
+//! Path length: `max_depth` counts segments, the camera connection included: a connection
+//! from the `n`-th hit closes a path of `n + 1` segments.
+
+use super::{Context, Integrator, Paths};
+use crate::mis::LightMis;
+use crate::walk::{Arrival, Start, Vertex, Visitor, walk};
+use footprint::Rgb;
+use footprint::bsdf::{Bsdf, Lobes, TransportMode};
+use footprint::film::SplatList;
+use footprint::guide::sampler::{DirectionSample, SamplerState, ScatterPoint};
+use footprint::math::PI;
+use footprint::rng::Rng;
+use footprint::scene::Scene;
+use footprint::scene::geometry::offset_ray_origin;
+use footprint::scene::light::Light;
+use glam::Vec3;
+
+/// Light tracing, registered as `lt`.
+pub struct LightTracing;
+
+impl Integrator for LightTracing {
+    fn name(&self) -> &'static str {
+        "lt"
+    }
+    fn about(&self) -> &'static str {
+        "Light tracing: paths from the lights connected to the camera, guided by the importance map"
+    }
+    fn layers(&self) -> &'static [&'static str] {
+        &["lt"]
+    }
+    fn paths(&self) -> Paths {
+        Paths {
+            camera: false,
+            light: true,
+        }
+    }
+    fn light_path<'a>(
+        &self,
+        ctx: &Context<'a>,
+        rng: &mut Rng,
+        state: &mut SamplerState<'a>,
+        splats: &mut [SplatList],
+    ) {
+        trace::<()>(ctx, rng, state, &mut splats[0], None);
+    }
+}
+
+/// A second estimate a light path feeds, with its own weights for the same connections.
+pub trait LightShare {
+    fn start(scene: &Scene, li: u32, p: Vec3, n: Option<Vec3>) -> Self;
+    /// Weight of the light point itself seen by the camera.
+    fn light_seen(&self, scene: &Scene, to_camera: Vec3) -> f32;
+    fn arrive(&mut self, light: &Light, v: &Vertex);
+    /// Weight of the camera connection from `v` in direction `wi`.
+    fn connection(&self, scene: &Scene, v: &Vertex, wi: Vec3) -> f32;
+    fn scattered(&mut self, v: &Vertex, s: &DirectionSample);
+}
+
+impl LightShare for () {
+    fn start(_scene: &Scene, _li: u32, _p: Vec3, _n: Option<Vec3>) -> Self {}
+    fn light_seen(&self, _scene: &Scene, _to_camera: Vec3) -> f32 {
+        0.0
+    }
+    fn arrive(&mut self, _light: &Light, _v: &Vertex) {}
+    fn connection(&self, _scene: &Scene, _v: &Vertex, _wi: Vec3) -> f32 {
+        0.0
+    }
+    fn scattered(&mut self, _v: &Vertex, _s: &DirectionSample) {}
+}
+
+impl LightShare for LightMis {
+    fn start(scene: &Scene, li: u32, p: Vec3, n: Option<Vec3>) -> Self {
+        LightMis::new(scene, li, p, n)
+    }
+    fn light_seen(&self, scene: &Scene, to_camera: Vec3) -> f32 {
+        self.weight_light_seen(scene, to_camera)
+    }
+    fn arrive(&mut self, light: &Light, v: &Vertex) {
+        LightMis::arrive(self, light, v.depth, -v.wo, v.hit.p, v.hit.ng);
+    }
+    fn connection(&self, scene: &Scene, v: &Vertex, wi: Vec3) -> f32 {
+        self.weight_camera_connection(scene, v.depth, &v.bsdf, v.hit.p, v.hit.ng, wi)
+    }
+    fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
+        LightMis::scattered(self, v.depth, v.hit.p, v.hit.ng, &v.bsdf, s.delta);
+    }
+}
+
+/// Traces one light path and splats its camera connections into `lt`, and into `share`
+/// weighted by `W`'s running weights.
+pub fn trace<'a, W: LightShare>(
+    ctx: &Context<'a>,
+    rng: &mut Rng,
+    state: &mut SamplerState<'a>,
+    lt: &mut SplatList,
+    share: Option<&mut SplatList>,
+) {
+    let scene = ctx.scene;
+    let cam = &scene.camera;
+    let (w, h) = (cam.width, cam.height);
+    let (li, pmf) = scene.light_distribution.sample(rng.uniform());
+    let light = &scene.lights[li];
+    let Some(em) = light.sample_le(rng.uniform2(), rng.uniform2()) else {
+        return;
+    };
+    let mut share = share.filter(|_| !light.is_environment());
+    let weights = W::start(scene, li as u32, em.p, em.n);
+
+    // ---- The light vertex seen directly by the camera (not the environment's disk) ----
+    if let Some(conn) = cam.connect(em.p).filter(|_| !light.is_environment()) {
+        let cos_l = em.n.map(|n| n.dot(conn.dir_to_camera)).unwrap_or(1.0);
+        if cos_l > 0.0 {
+            let le = light.emitted(conn.dir_to_camera);
+            let visible = match em.n {
+                Some(n) => scene.visible_from_camera(em.p, n),
+                None => scene.visible(cam.position, cam.frame.z, em.p, None),
+            };
+            if le.max_element() > 0.0 && visible {
+                let v = le * (cos_l * conn.we_geom / (em.pdf_pos * pmf));
+                lt.splat(&cam.filter, w, h, conn.raster, v);
+                if let Some(s) = share.as_deref_mut() {
+                    let wt = weights.light_seen(scene, conn.dir_to_camera);
+                    s.splat(&cam.filter, w, h, conn.raster, v * wt);
+                }
+            }
+        }
+    }
+    if ctx.max_depth < 2 {
+        return;
+    }
+
+    // ---- Emission direction, guided at area lights ----
+    let (dir, beta) = match em.n {
+        Some(n) => {
+            // The emitted cosine lobe as a Lambertian "BSDF" of albedo 1 about the normal.
+            let lobe = Bsdf::new(Lobes::Diffuse { kd: Rgb::ONE }, n, n);
+            let at = ScatterPoint {
+                p: em.p,
+                bsdf: &lobe,
+                wo: n,
+                mode: TransportMode::Importance,
+                throughput: em.le,
+            };
+            ctx.light_sampler.prepare(&at, state);
+            let Some(s) = ctx.light_sampler.sample(&at, state, rng) else {
+                return;
+            };
+            // Le cos / (pdf_pos pdf_w pmf) = Le π (f cos / pdf_w) / (pdf_pos pmf) with f = 1/π.
+            (s.wi, em.le * s.weight * (PI / (em.pdf_pos * pmf)))
+        }
+        None => (
+            em.dir,
+            em.le * (em.cos_light / (em.pdf_pos * em.pdf_dir * pmf)),
+        ),
+    };
+    if !beta.is_finite() || beta.max_element() <= 0.0 {
+        return;
+    }
+    let start = Start {
+        origin: match em.n {
+            Some(n) => offset_ray_origin(em.p, n),
+            None => em.p,
+        },
+        dir,
+        beta,
+        beta0: beta,
+        mode: TransportMode::Importance,
+        // A connection from the n-th hit closes n + 1 segments.
+        max_vertex_depth: ctx.max_depth - 1,
+    };
+    let mut v = LightVisitor {
+        scene,
+        light,
+        lt,
+        share,
+        weights,
+    };
+    walk(scene, &start, &ctx.light_sampler, state, rng, &mut v);
+}
+
+struct LightVisitor<'s, 'f, W> {
+    scene: &'s Scene,
+    light: &'s Light,
+    lt: &'f mut SplatList,
+    /// The second estimate's splats and weights.
+    share: Option<&'f mut SplatList>,
+    weights: W,
+}
+
+impl<W: LightShare> Visitor for LightVisitor<'_, '_, W> {
+    // ---- Connect to the camera ----
+    fn reached(&mut self, v: &Vertex, _from: &Arrival) {
+        let scene = self.scene;
+        if self.share.is_some() {
+            self.weights.arrive(self.light, v);
+        }
+        if v.bsdf.is_delta() {
+            return;
+        }
+        let cam = &scene.camera;
+        let Some(conn) = cam.connect(v.hit.p) else {
+            return;
+        };
+        let wi = conn.dir_to_camera;
+        let f = v.bsdf.eval(v.wo, wi, TransportMode::Importance);
+        if f.max_element() <= 0.0 || !scene.visible_from_camera(v.hit.p, v.hit.ng) {
+            return;
+        }
+        let value = v.beta * f * (wi.dot(v.hit.ns).abs() * conn.we_geom);
+        let (w, h) = (cam.width, cam.height);
+        self.lt.splat(&cam.filter, w, h, conn.raster, value);
+        if let Some(s) = self.share.as_deref_mut() {
+            let wt = self.weights.connection(scene, v, wi);
+            s.splat(&cam.filter, w, h, conn.raster, value * wt);
+        }
+    }
+
+    fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
+        if self.share.is_some() {
+            self.weights.scattered(v, s);
+        }
+    }
+}

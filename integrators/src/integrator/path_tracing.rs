@@ -1,0 +1,267 @@
+//! Path tracing with next-event estimation and multiple importance sampling (Veach 1997,
+//! §9.2), guided or not: at every scattering vertex the direction sampler (BSDF, grid or
+//! footprint over the photon map) chooses the next direction; at every non-specular vertex
+//! a light is chosen in proportion to power and a point on it sampled, and the MIS weight
+//! between that and hitting the light uses the sampler's pdf (the guided mixture pdf,
+//! evaluated at the light sample's direction). Delta lights are reached by next-event
+//! estimation alone; specular vertices pass emission through unweighted.
+//!
+//! A uniform environment (Mitsuba's `constant`) is seen by rays that escape, weighted by MIS
+//! against its next-event samples.
+//!
+//! A camera path can also feed a second estimate with other weights ([`CameraShare`]): the
+//! combined image's share, weighted against light tracing by [`crate::mis::CameraMis`].
+//!
+//! Path length: `max_depth` counts segments, the first being the camera ray. Emission seen
+//! at hit `n` closes a path of `n` segments; a next-event connection at hit `n`, `n + 1`.
+
+use super::{Context, Integrator, Paths};
+use crate::mis::CameraMis;
+use crate::walk::{Arrival, Start, Vertex, Visitor, walk};
+use footprint::Rgb;
+use footprint::bsdf::TransportMode;
+use footprint::guide::sampler::{DirectionSample, GuidedSampler, SamplerState, ScatterPoint};
+use footprint::math::power_heuristic;
+use footprint::rng::Rng;
+use footprint::scene::Scene;
+use footprint::scene::light::LightSample;
+use glam::{Vec2, Vec3};
+
+/// Path tracing, registered as `pt`.
+pub struct PathTracing;
+
+impl Integrator for PathTracing {
+    fn name(&self) -> &'static str {
+        "pt"
+    }
+    fn about(&self) -> &'static str {
+        "Path tracing with next-event estimation and MIS, guided by the photon map"
+    }
+    fn layers(&self) -> &'static [&'static str] {
+        &["pt"]
+    }
+    fn paths(&self) -> Paths {
+        Paths {
+            camera: true,
+            light: false,
+        }
+    }
+    fn camera_path<'a>(
+        &self,
+        ctx: &Context<'a>,
+        raster: Vec2,
+        rng: &mut Rng,
+        state: &mut SamplerState<'a>,
+        out: &mut [Rgb],
+    ) {
+        let cam = &ctx.scene.camera;
+        let c = trace(
+            ctx.scene,
+            cam.position,
+            cam.ray_dir(raster),
+            ctx.max_depth,
+            &ctx.camera_sampler,
+            state,
+            rng,
+            (),
+        );
+        out[0] += c.pt;
+    }
+}
+
+/// A second estimate a camera path feeds, with its own weights for the same
+/// contributions. `()` feeds none.
+pub trait CameraShare {
+    /// False for `()`: nothing to compute.
+    const ACTIVE: bool;
+    fn arrive(&mut self, _scene: &Scene, _v: &Vertex) {}
+    /// Weight of emission from light `li` found at `v`.
+    fn light_hit(&self, _scene: &Scene, _li: u32, _v: &Vertex) -> f32 {
+        0.0
+    }
+    /// Weight of a next-event connection from `v` to `ls` on light `li`.
+    fn nee(&self, _scene: &Scene, _li: u32, _v: &Vertex, _ls: &LightSample) -> f32 {
+        0.0
+    }
+    fn scattered(&mut self, _v: &Vertex, _s: &DirectionSample) {}
+}
+
+impl CameraShare for () {
+    const ACTIVE: bool = false;
+}
+
+impl CameraShare for CameraMis {
+    const ACTIVE: bool = true;
+    fn arrive(&mut self, scene: &Scene, v: &Vertex) {
+        CameraMis::arrive(self, scene, v.depth, -v.wo, v.hit.p, v.hit.ng);
+    }
+    fn light_hit(&self, scene: &Scene, li: u32, v: &Vertex) -> f32 {
+        self.weight_light_hit(scene, li, v.depth, v.wo, v.hit.p)
+    }
+    fn nee(&self, scene: &Scene, li: u32, v: &Vertex, ls: &LightSample) -> f32 {
+        self.weight_nee(scene, li, v.depth, &v.bsdf, v.hit.p, v.hit.ng, v.wo, ls)
+    }
+    fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
+        CameraMis::scattered(self, v.depth, v.hit.p, v.hit.ng, &v.bsdf, s.delta);
+    }
+}
+
+/// What one camera path contributes: the path tracer's own estimate (NEE and light hits
+/// weighted against each other) and its share of a second estimate.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CameraContribution {
+    pub pt: Rgb,
+    pub share: Rgb,
+}
+
+/// Estimates the radiance arriving at `origin` from direction `-dir` (the ray `origin + t
+/// dir`) with BSDF sampling; `origin` must already be offset off any surface it lies on.
+/// Emission at the first hit counts fully.
+pub fn radiance_along(
+    scene: &Scene,
+    origin: Vec3,
+    dir: Vec3,
+    max_depth: u32,
+    rng: &mut Rng,
+) -> Rgb {
+    let sampler = GuidedSampler::bsdf();
+    let mut state = SamplerState::default();
+    trace(scene, origin, dir, max_depth, &sampler, &mut state, rng, ()).pt
+}
+
+/// Traces one camera path from `origin` along `dir`; `share` receives the second
+/// estimate's weights (its `origin` must be the camera position).
+#[allow(clippy::too_many_arguments)]
+pub fn trace<'a, S: CameraShare>(
+    scene: &Scene,
+    origin: Vec3,
+    dir: Vec3,
+    max_depth: u32,
+    sampler: &GuidedSampler<'a>,
+    state: &mut SamplerState<'a>,
+    rng: &mut Rng,
+    share: S,
+) -> CameraContribution {
+    let mut v = CameraVisitor {
+        scene,
+        out: CameraContribution::default(),
+        share,
+    };
+    let start = Start {
+        origin,
+        dir,
+        beta: Rgb::ONE,
+        beta0: Rgb::ONE,
+        mode: TransportMode::Radiance,
+        max_vertex_depth: max_depth,
+    };
+    walk(scene, &start, sampler, state, rng, &mut v);
+    v.out
+}
+
+struct CameraVisitor<'s, S> {
+    scene: &'s Scene,
+    out: CameraContribution,
+    share: S,
+}
+
+impl<S: CameraShare> Visitor for CameraVisitor<'_, S> {
+    // ---- The environment seen by an escaping ray ----
+    fn escaped(&mut self, dir: Vec3, beta: Rgb, _depth: u32, from: &Arrival) {
+        let Some((ei, env)) = self.scene.environment() else {
+            return;
+        };
+        let le = env.emitted(dir);
+        let w = if from.delta {
+            1.0
+        } else {
+            let pdf_light = self.scene.light_pmf(ei) * env.pdf_li(from.prev_p, from.prev_p + dir);
+            power_heuristic(from.pdf_w, pdf_light)
+        };
+        self.out.pt += beta * le * w;
+        // The second estimate takes environment paths from the path tracer alone (see
+        // `light_tracing`): the same two-strategy weights.
+        if S::ACTIVE {
+            self.out.share += beta * le * w;
+        }
+    }
+
+    // ---- Emission found by the sampled ray ----
+    fn reached(&mut self, v: &Vertex, from: &Arrival) {
+        if S::ACTIVE {
+            self.share.arrive(self.scene, v);
+        }
+        if !self.scene.effects.area_lights {
+            return;
+        }
+        let Some(li) = v.hit.light else { return };
+        let light = &self.scene.lights[li as usize];
+        let le = light.emitted(v.wo);
+        if le.max_element() <= 0.0 {
+            return;
+        }
+        if from.delta {
+            self.out.pt += v.beta * le;
+        } else {
+            let pdf_light = self.scene.light_pmf(li) * light.pdf_li(from.prev_p, v.hit.p);
+            self.out.pt += v.beta * le * power_heuristic(from.pdf_w, pdf_light);
+        }
+        if S::ACTIVE {
+            self.out.share += v.beta * le * self.share.light_hit(self.scene, li, v);
+        }
+    }
+
+    // ---- Next-event estimation ----
+    fn before_scatter(
+        &mut self,
+        v: &Vertex,
+        at: &ScatterPoint,
+        sampler: &GuidedSampler,
+        state: &SamplerState,
+        rng: &mut Rng,
+    ) {
+        let u_light = rng.uniform();
+        let u_pos = rng.uniform2();
+        if v.bsdf.is_delta() {
+            return;
+        }
+        let scene = self.scene;
+        let (li, pmf) = scene.light_distribution.sample(u_light);
+        let light = &scene.lights[li];
+        let Some(ls) = light.sample_li(v.hit.p, u_pos) else {
+            return;
+        };
+        let f = v.bsdf.eval(v.wo, ls.wi, TransportMode::Radiance);
+        if f.max_element() <= 0.0 || !scene.visible(v.hit.p, v.hit.ng, ls.p, ls.n) {
+            return;
+        }
+        let cos = ls.wi.dot(v.hit.ns).abs();
+        let contrib = if ls.delta {
+            v.beta * f * ls.li * (cos / pmf)
+        } else {
+            v.beta * f * ls.li * (cos / (ls.pdf_w * pmf))
+        };
+        // The path tracer's own weight: NEE against hitting the light by the sampler.
+        let w_pt = if ls.delta {
+            1.0
+        } else {
+            power_heuristic(ls.pdf_w * pmf, sampler.pdf(at, state, ls.wi))
+        };
+        self.out.pt += contrib * w_pt;
+        if S::ACTIVE {
+            // Environment paths come from the path tracer alone (see `light_tracing`).
+            let w = if light.is_environment() {
+                w_pt
+            } else {
+                self.share.nee(scene, li as u32, v, &ls)
+            };
+            self.out.share += contrib * w;
+        }
+    }
+
+    fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
+        if S::ACTIVE {
+            self.share.scattered(v, s);
+        }
+    }
+}

@@ -1,0 +1,166 @@
+//! The one path loop: a random walk through the scene, shared by path tracing, light
+//! tracing and both particle passes (as pbrt-v4's BDPT `RandomWalk` serves both subpaths).
+//! The walk intersects, builds the BSDF, lets its [`Visitor`] act at the vertex (emission,
+//! next-event estimation, a camera connection, storing a particle), asks the direction
+//! sampler for the next direction, applies the Russian roulette rule and spawns the next
+//! ray. What differs between the integrators lives in their visitors.
+//!
+//! **Depth.** A vertex's depth is the number of segments from the walk's source (camera or
+//! light) to it: the first hit has depth 1. The walk visits vertices up to
+//! `max_vertex_depth` and scatters only from vertices below it.
+//!
+//! **Russian roulette, one rule** for every walk: after scattering at a vertex of depth
+//! [`RR_START_DEPTH`] or more, the path continues with probability
+//! `q = clamp(max_c β_c / max_c β_0, 0.05, 1)` (β the throughput after scattering, β_0 the
+//! throughput the walk started with) and its throughput is divided by `q`. Camera paths
+//! start at β_0 = 1; light paths and particles at their emitted weight, so the rule reads
+//! the same relative to what the path carried at its start.
+
+use footprint::Rgb;
+use footprint::bsdf::{Bsdf, TransportMode};
+use footprint::guide::sampler::{DirectionSample, GuidedSampler, SamplerState, ScatterPoint};
+use footprint::rng::Rng;
+use footprint::scene::Scene;
+use footprint::scene::geometry::{SurfaceHit, spawn_origin};
+use glam::Vec3;
+
+/// Russian roulette applies after scattering at vertices of this depth or deeper.
+pub const RR_START_DEPTH: u32 = 3;
+
+/// The rule: survival probability for throughput `beta` of a walk that started at `beta0`.
+#[inline]
+pub fn survival_probability(beta: Rgb, beta0_max: f32) -> f32 {
+    (beta.max_element() / beta0_max).clamp(0.05, 1.0)
+}
+
+/// A surface vertex of a walk.
+pub struct Vertex {
+    pub hit: SurfaceHit,
+    pub bsdf: Bsdf,
+    /// Unit direction back along the path.
+    pub wo: Vec3,
+    /// Segments from the walk's source to this vertex.
+    pub depth: u32,
+    /// Throughput arriving at this vertex.
+    pub beta: Rgb,
+}
+
+/// How the walk arrived at the current vertex (or left the scene): the previous vertex and
+/// the density of the direction sampled there.
+#[derive(Clone, Copy, Debug)]
+pub struct Arrival {
+    pub prev_p: Vec3,
+    /// Density per steradian of the direction that led here (0 for the walk's first ray).
+    pub pdf_w: f32,
+    /// The direction came from a delta lobe, or is the walk's first ray.
+    pub delta: bool,
+}
+
+/// What a walk's owner does along it. Every method has a default that does nothing.
+pub trait Visitor {
+    /// The ray along `dir` from `from.prev_p` left the scene; `beta` is its throughput and
+    /// `depth` the segment count it would have closed.
+    fn escaped(&mut self, _dir: Vec3, _beta: Rgb, _depth: u32, _from: &Arrival) {}
+    /// A vertex was reached.
+    fn reached(&mut self, _v: &Vertex, _from: &Arrival) {}
+    /// The sampler is prepared at `v` (only at vertices the walk scatters from): next-event
+    /// estimation happens here.
+    fn before_scatter(
+        &mut self,
+        _v: &Vertex,
+        _at: &ScatterPoint,
+        _sampler: &GuidedSampler,
+        _state: &SamplerState,
+        _rng: &mut Rng,
+    ) {
+    }
+    /// A direction was sampled at `v`.
+    fn scattered(&mut self, _v: &Vertex, _s: &DirectionSample) {}
+}
+
+/// Where a walk starts and how far it goes.
+#[derive(Clone, Copy, Debug)]
+pub struct Start {
+    /// Ray origin, already offset off any surface it lies on.
+    pub origin: Vec3,
+    pub dir: Vec3,
+    /// Throughput of the first segment.
+    pub beta: Rgb,
+    /// Throughput the Russian roulette rule is relative to (see the module doc).
+    pub beta0: Rgb,
+    pub mode: TransportMode,
+    pub max_vertex_depth: u32,
+}
+
+/// Walks from `start` until the path leaves the scene, reaches `max_vertex_depth`, fails
+/// to sample a direction or is terminated by Russian roulette.
+pub fn walk<'a>(
+    scene: &Scene,
+    start: &Start,
+    sampler: &GuidedSampler<'a>,
+    state: &mut SamplerState<'a>,
+    rng: &mut Rng,
+    visitor: &mut impl Visitor,
+) {
+    let beta0_max = start.beta0.max_element().max(f32::MIN_POSITIVE);
+    let mut origin = start.origin;
+    let mut dir = start.dir;
+    let mut beta = start.beta;
+    let mut from = Arrival {
+        prev_p: start.origin,
+        pdf_w: 0.0,
+        delta: true,
+    };
+    for depth in 1..=start.max_vertex_depth {
+        let Some(hit) = scene.intersect(origin, dir, f32::INFINITY) else {
+            visitor.escaped(dir, beta, depth, &from);
+            return;
+        };
+        let v = Vertex {
+            bsdf: scene.bsdf(&hit),
+            hit,
+            wo: -dir,
+            depth,
+            beta,
+        };
+        visitor.reached(&v, &from);
+        if depth == start.max_vertex_depth {
+            return;
+        }
+
+        // ---- The next direction ----
+        let at = ScatterPoint {
+            p: v.hit.p,
+            bsdf: &v.bsdf,
+            wo: v.wo,
+            mode: start.mode,
+            throughput: beta,
+        };
+        sampler.prepare(&at, state);
+        visitor.before_scatter(&v, &at, sampler, state, rng);
+        let Some(s) = sampler.sample(&at, state, rng) else {
+            return;
+        };
+        beta *= s.weight;
+        if !beta.is_finite() || beta.max_element() <= 0.0 {
+            return;
+        }
+        visitor.scattered(&v, &s);
+        from = Arrival {
+            prev_p: v.hit.p,
+            pdf_w: s.pdf_w,
+            delta: s.delta,
+        };
+
+        // ---- Russian roulette ----
+        if depth >= RR_START_DEPTH {
+            let q = survival_probability(beta, beta0_max);
+            if rng.uniform() >= q {
+                return;
+            }
+            beta /= q;
+        }
+        origin = spawn_origin(v.hit.p, v.hit.ng, s.wi);
+        dir = s.wi;
+    }
+}

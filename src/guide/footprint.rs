@@ -1,0 +1,397 @@
+//! The hemispherical particle footprint guide (Hey & Purgathofer 2001, §2; docs/method.md).
+//!
+//! From the particles around a point (local frame around the side normal `N`):
+//!
+//! * **Directional density** (§2.2, eq. 5-6): each hemisphere's particle directions are
+//!   projected onto the tangent plane, a `k_g = 32 x 32` grid over `[-1, 1]²`, and each
+//!   particle adds 1 to the 3 x 3 block of cells around its own. The cells' solid angles `ω`
+//!   are integrated once, exactly up to quadrature (`ω = ∬ dx dy / z` over the cell's part of
+//!   the unit disc), instead of eq. 6's `4 / (k_g cos θ_cell)`, which has no value on the rim.
+//! * **Footprint radius** (§2.3, eq. 7-11), two readings, [`RadiusRule`]:
+//!   `SolidAngle` (default): `δ = g / (9 ω)` particles per steradian and a cap of solid angle
+//!   `ω_f = k_r / δ`; `Literal`: `r = k_r / (g / ω)`. Either way the cap's sine-radius is
+//!   clamped to `r_max = |Ψ_p · N|` (eq. 8-9) so the cap stays in its hemisphere, and its solid
+//!   angle is `ω_f = 2π r² / (1 + √(1 - r²))` (eq. 10 without cancellation).
+//! * **Sampling** (§2.4): a particle with probability `c_p / Σ c` — the hemisphere choice of
+//!   eq. 3-4 times the particle choice of eq. 15 — then a direction uniform in solid angle in
+//!   its cap (docs/method.md: eq. 16's disc is neither the whole disc nor uniform in solid
+//!   angle). With per-channel weights the particle choice is a mixture over channels
+//!   ([`ChannelMix`]).
+//! * **Pdf** (eq. 12, 17 in per-steradian form, as the marginal over every choice):
+//!   `p_fp(Ψ) = Σ_p (c_p / Σ c) · 1[Ψ ∈ cap_p] / ω_f(p)`, where `Ψ ∈ cap_p` means
+//!   `1 - Ψ·Ψ_p < 1 - cos α_p`, tested as `|Ψ - Ψ_p|² < 2 (1 - cos α_p)` (eq. 14 without the
+//!   antipodal cap). The sum runs over every particle; a bounding-volume hierarchy over the
+//!   caps finds the few that contain `Ψ`.
+//! * **Sample and pdf agree by construction**: a direction drawn in a cap that the f32
+//!   membership test puts outside that cap (possible at the rim of a cap of 1e-3 radius) is
+//!   drawn again, so `sample` only returns directions inside their own cap as `pdf` sees
+//!   it. The particle probabilities `pdf` uses are differences of the same cumulative
+//!   sums `sample` searches.
+
+use crate::Rgb;
+use crate::guide::{ChannelMix, Guide, GuideDistribution, GuideParticle};
+use crate::math::{Frame, PI, safe_sqrt};
+use crate::rng::Rng;
+use crate::settings::{GuideParams, RadiusRule};
+use glam::Vec3;
+use std::sync::OnceLock;
+
+/// `ω_f = 2π (1 - √(1 - r²))`, computed as `2π r² / (1 + √(1 - r²))` so that it keeps full
+/// relative precision for small `r`.
+#[inline]
+pub fn cap_solid_angle(r: f32) -> f32 {
+    let r2 = r * r;
+    2.0 * PI * r2 / (1.0 + safe_sqrt(1.0 - r2))
+}
+
+/// The sine-radius of a cap of solid angle `omega` (at most a hemisphere).
+#[inline]
+fn cap_radius_for_solid_angle(omega: f32) -> f32 {
+    // 1 - cos α = ω / 2π; r² = (1 - cos α)(1 + cos α).
+    let omc = (omega / (2.0 * PI)).min(1.0);
+    safe_sqrt(omc * (2.0 - omc))
+}
+
+/// The solid angles of the `side x side` tangent-plane grid's cells projected onto the
+/// hemisphere, by a 16 x 16 midpoint rule per cell of `∬ dx dy / z` over the cell's part of
+/// the unit disc.
+pub fn cell_solid_angles(side: usize) -> Vec<f32> {
+    let h = 2.0 / side as f64;
+    let sub = 16;
+    let mut out = vec![0.0f32; side * side];
+    for j in 0..side {
+        for i in 0..side {
+            let mut s = 0.0f64;
+            for b in 0..sub {
+                for a in 0..sub {
+                    let x = -1.0 + (i as f64 + (a as f64 + 0.5) / sub as f64) * h;
+                    let y = -1.0 + (j as f64 + (b as f64 + 0.5) / sub as f64) * h;
+                    let z2 = 1.0 - x * x - y * y;
+                    if z2 > 0.0 {
+                        s += 1.0 / z2.sqrt();
+                    }
+                }
+            }
+            out[j * side + i] = (s * h * h / (sub * sub) as f64) as f32;
+        }
+    }
+    out
+}
+
+/// The cell solid angles for a grid side, computed once per side and kept.
+fn cell_solid_angles_cached(side: usize) -> &'static [f32] {
+    static CACHE: OnceLock<std::sync::Mutex<Vec<(usize, &'static [f32])>>> = OnceLock::new();
+    let cache = CACHE.get_or_init(Default::default);
+    let mut c = cache.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, w)) = c.iter().find(|(s, _)| *s == side) {
+        return w;
+    }
+    let w: &'static [f32] = Box::leak(cell_solid_angles(side).into_boxed_slice());
+    c.push((side, w));
+    w
+}
+
+/// A footprint: a spherical cap around a particle direction (world frame).
+#[derive(Clone, Copy, Debug)]
+pub struct Cap {
+    /// Centre, world, unit.
+    pub dir: Vec3,
+    /// `1 - cos α_max` (the cap is `1 - Ψ·dir < one_minus_cos`).
+    pub one_minus_cos: f32,
+    /// `1 / ω_f = 1 / (2π (1 - cos α_max))`.
+    pub inv_solid_angle: f32,
+}
+
+impl Cap {
+    /// The membership test `pdf` uses: `|Ψ - dir|² < 2 (1 - cos α)`, which is
+    /// `1 - Ψ·dir < 1 - cos α` without cancellation (eq. 14, one cap only).
+    #[inline]
+    pub fn contains(&self, w: Vec3) -> bool {
+        (w - self.dir).length_squared() < 2.0 * self.one_minus_cos
+    }
+
+    /// A direction uniform in solid angle in the cap (`1 - cos α` uniform in
+    /// `[0, 1 - cos α_max)`), redrawn until the membership test accepts it.
+    fn sample(&self, rng: &mut Rng) -> Vec3 {
+        let (t1, t2) = self.dir.any_orthonormal_pair();
+        for _ in 0..16 {
+            let omc = rng.uniform() * self.one_minus_cos;
+            let cos_a = 1.0 - omc;
+            let sin_a = safe_sqrt(omc * (2.0 - omc));
+            let phi = 2.0 * PI * rng.uniform();
+            let w = (self.dir * cos_a + (t1 * phi.cos() + t2 * phi.sin()) * sin_a).normalize();
+            if self.contains(w) {
+                return w;
+            }
+        }
+        // Sixteen rim draws in a row: the centre is always inside.
+        self.dir
+    }
+}
+
+/// A node of the bounding-volume hierarchy over the caps: the box of its caps' boxes
+/// (`dir ± chord`), and either two children (`right`, the left one follows) or a range of
+/// caps.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    lo: Vec3,
+    hi: Vec3,
+    /// Leaf: first cap; inner: index of the right child.
+    index: u32,
+    /// Leaf: number of caps (> 0); inner: 0.
+    count: u32,
+}
+
+const LEAF_CAPS: usize = 4;
+
+/// The footprint mixture of one point or region: caps in world space with per-channel
+/// cumulative selection probabilities.
+#[derive(Clone, Debug, Default)]
+pub struct FootprintDistribution {
+    pub caps: Vec<Cap>,
+    /// Per channel, the cumulative probabilities over `caps` (empty when the channel's total
+    /// is zero); a cap's probability is the difference of consecutive entries.
+    cdf: [Vec<f32>; 3],
+    totals: Rgb,
+    nodes: Vec<Node>,
+}
+
+impl FootprintDistribution {
+    /// Builds the caps from particles (world directions, per-channel weights) around a point
+    /// with side normal `frame.z` (eq. 5-11). Particles with zero weight or grazing
+    /// `|Ψ_p·N|` must already be left out.
+    pub fn build(frame: &Frame, particles: &[GuideParticle], params: &GuideParams) -> Self {
+        let side = params.k_g_side;
+        let omega = cell_solid_angles_cached(side);
+        let local: Vec<Vec3> = particles.iter().map(|p| frame.to_local(p.dir)).collect();
+        let cell = |d: Vec3| -> (usize, usize) {
+            let i =
+                (((d.x + 1.0) * 0.5 * side as f32) as isize).clamp(0, side as isize - 1) as usize;
+            let j =
+                (((d.y + 1.0) * 0.5 * side as f32) as isize).clamp(0, side as isize - 1) as usize;
+            (i, j)
+        };
+        // ---- Directional density: 3 x 3 splats per hemisphere (eq. 5) ----
+        let mut grid = vec![0u32; 2 * side * side];
+        for d in &local {
+            let base = if d.z >= 0.0 { 0 } else { side * side };
+            let (ci, cj) = cell(*d);
+            for j in cj.saturating_sub(1)..=(cj + 1).min(side - 1) {
+                for i in ci.saturating_sub(1)..=(ci + 1).min(side - 1) {
+                    grid[base + j * side + i] += 1;
+                }
+            }
+        }
+        // ---- Caps (eq. 7-11) ----
+        let mut caps: Vec<(Cap, Rgb)> = Vec::with_capacity(particles.len());
+        for (p, d) in particles.iter().zip(&local) {
+            let base = if d.z >= 0.0 { 0 } else { side * side };
+            let (ci, cj) = cell(*d);
+            let g = grid[base + cj * side + ci].max(1) as f32;
+            let w = omega[cj * side + ci].max(1e-9);
+            let r_max = d.z.abs();
+            let r = match params.radius_rule {
+                RadiusRule::SolidAngle => {
+                    let density = g / (9.0 * w);
+                    cap_radius_for_solid_angle(params.k_r / density)
+                }
+                RadiusRule::Literal => params.k_r / (g / w),
+            }
+            .min(r_max);
+            let r2 = r * r;
+            let one_minus_cos = r2 / (1.0 + safe_sqrt(1.0 - r2));
+            if !(one_minus_cos > 0.0) {
+                continue;
+            }
+            caps.push((
+                Cap {
+                    dir: p.dir.normalize(),
+                    one_minus_cos,
+                    inv_solid_angle: 1.0 / (2.0 * PI * one_minus_cos),
+                },
+                p.weight,
+            ));
+        }
+        let mut out = FootprintDistribution::default();
+        if caps.is_empty() {
+            return out;
+        }
+        // ---- The hierarchy over the caps (reorders them) ----
+        build_nodes(&mut caps, 0, &mut out.nodes);
+        // ---- Per-channel selection (eq. 15 with the channel mixture) ----
+        let mut totals = [0.0f64; 3];
+        for (_, w) in &caps {
+            for (t, c) in totals.iter_mut().zip([w.x, w.y, w.z]) {
+                *t += c as f64;
+            }
+        }
+        for ch in 0..3 {
+            if !(totals[ch] > 0.0) {
+                continue;
+            }
+            let mut acc = 0.0f64;
+            out.cdf[ch] = caps
+                .iter()
+                .map(|(_, w)| {
+                    acc += w[ch] as f64 / totals[ch];
+                    acc as f32
+                })
+                .collect();
+            if let Some(last) = out.cdf[ch].last_mut() {
+                *last = 1.0;
+            }
+        }
+        out.totals = Rgb::new(totals[0] as f32, totals[1] as f32, totals[2] as f32);
+        out.caps = caps.into_iter().map(|(c, _)| c).collect();
+        out
+    }
+
+    /// Probability with which `sample` chooses cap `i` under the channel mixture `mix`.
+    pub fn probability(&self, mix: &ChannelMix, i: usize) -> f32 {
+        (0..3)
+            .filter(|&ch| mix.0[ch] > 0.0)
+            .map(|ch| mix.0[ch] * self.prob(ch, i))
+            .sum()
+    }
+
+    /// Probability of choosing cap `i` in channel `ch`.
+    #[inline]
+    fn prob(&self, ch: usize, i: usize) -> f32 {
+        let cdf = &self.cdf[ch];
+        if cdf.is_empty() {
+            return 0.0;
+        }
+        cdf[i] - if i > 0 { cdf[i - 1] } else { 0.0 }
+    }
+
+    /// Calls `f` with the index of every cap whose box contains `w`.
+    #[inline]
+    fn for_caps_near(&self, w: Vec3, mut f: impl FnMut(usize)) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let mut stack = [0u32; 64];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let ni = stack[top] as usize;
+            let n = &self.nodes[ni];
+            if w.cmplt(n.lo).any() || w.cmpgt(n.hi).any() {
+                continue;
+            }
+            if n.count > 0 {
+                for i in n.index..n.index + n.count {
+                    f(i as usize);
+                }
+            } else if top + 2 <= stack.len() {
+                // The left child follows its parent.
+                stack[top] = n.index;
+                stack[top + 1] = ni as u32 + 1;
+                top += 2;
+            }
+        }
+    }
+}
+
+/// Builds the hierarchy over `caps` (reordering them so that every leaf is a range);
+/// `offset` is the index of `caps[0]` in the whole array. Returns the node's index.
+fn build_nodes(caps: &mut [(Cap, Rgb)], offset: usize, nodes: &mut Vec<Node>) -> u32 {
+    let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    let (mut clo, mut chi) = (lo, hi);
+    for (c, _) in caps.iter() {
+        let chord = (2.0 * c.one_minus_cos).sqrt() * 1.0001 + 1e-6;
+        lo = lo.min(c.dir - Vec3::splat(chord));
+        hi = hi.max(c.dir + Vec3::splat(chord));
+        clo = clo.min(c.dir);
+        chi = chi.max(c.dir);
+    }
+    let me = nodes.len() as u32;
+    nodes.push(Node {
+        lo,
+        hi,
+        index: offset as u32,
+        count: caps.len() as u32,
+    });
+    if caps.len() <= LEAF_CAPS {
+        return me;
+    }
+    let ext = chi - clo;
+    let axis = if ext.x >= ext.y && ext.x >= ext.z {
+        0
+    } else if ext.y >= ext.z {
+        1
+    } else {
+        2
+    };
+    let mid = caps.len() / 2;
+    caps.select_nth_unstable_by(mid, |a, b| a.0.dir[axis].total_cmp(&b.0.dir[axis]));
+    let (left, right) = caps.split_at_mut(mid);
+    build_nodes(left, offset, nodes);
+    let r = build_nodes(right, offset + mid, nodes);
+    nodes[me as usize].index = r;
+    nodes[me as usize].count = 0;
+    me
+}
+
+impl GuideDistribution for FootprintDistribution {
+    fn channel_totals(&self) -> Rgb {
+        self.totals
+    }
+
+    fn sample(&self, mix: &ChannelMix, rng: &mut Rng) -> Option<Vec3> {
+        let ch = mix.pick(rng.uniform());
+        let cdf = &self.cdf[ch];
+        if cdf.is_empty() {
+            return None;
+        }
+        let u = rng.uniform();
+        let i = cdf.partition_point(|&c| c <= u).min(cdf.len() - 1);
+        Some(self.caps[i].sample(rng))
+    }
+
+    fn pdf(&self, mix: &ChannelMix, wi: Vec3) -> f32 {
+        let mut p = 0.0;
+        self.for_caps_near(wi, |i| {
+            let cap = &self.caps[i];
+            if cap.contains(wi) {
+                let mut sel = 0.0;
+                for ch in 0..3 {
+                    if mix.0[ch] > 0.0 {
+                        sel += mix.0[ch] * self.prob(ch, i);
+                    }
+                }
+                p += sel * cap.inv_solid_angle;
+            }
+        });
+        p
+    }
+
+    fn heap_bytes(&self) -> usize {
+        self.caps.capacity() * std::mem::size_of::<Cap>()
+            + self.cdf.iter().map(|c| c.capacity() * 4).sum::<usize>()
+            + self.nodes.capacity() * std::mem::size_of::<Node>()
+    }
+}
+
+/// The paper's footprints as a [`Guide`].
+pub struct FootprintGuide;
+
+impl Guide for FootprintGuide {
+    fn name(&self) -> &'static str {
+        "footprint"
+    }
+
+    fn about(&self) -> &'static str {
+        "Hemispherical particle footprints (Hey & Purgathofer 2001)"
+    }
+
+    fn build(
+        &self,
+        frame: &Frame,
+        particles: &[GuideParticle],
+        params: &GuideParams,
+    ) -> Option<Box<dyn GuideDistribution>> {
+        let d = FootprintDistribution::build(frame, particles, params);
+        (!d.caps.is_empty()).then(|| Box::new(d) as Box<dyn GuideDistribution>)
+    }
+}

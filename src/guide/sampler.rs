@@ -1,0 +1,318 @@
+//! The direction sampler the integrators call at every scattering vertex, the same way for
+//! camera paths (guided by the photon map) and light paths (guided by the importance map):
+//! `prepare` at the point, then `sample` and `pdf` as often as needed (the pdf is also what
+//! next-event estimation's MIS weight needs).
+//!
+//! Guiding happens only at diffuse and soft glossy surfaces ([`guides_at`]) and only where a
+//! distribution exists; elsewhere the sampler is the BSDF's own sampling and reports its pdf
+//! (paper §3, docs/method.md step 1), counting the fallback. Where it guides, the direction
+//! comes from the BSDF with probability `p_BSDF` and from the guide's distribution
+//! otherwise, and the pdf is the one-sample mixture
+//! `p_BSDF · p_bsdf(ω) + (1 - p_BSDF) · p_guide(ω)` per steradian.
+//!
+//! The distribution comes from one of two [`GuideSource`]s:
+//! * **cached**: the region of the [`GuideCache`] holding the point (a tree descent, no
+//!   search), with per-channel particle weights mixed by the path's colour;
+//! * **per event** (the paper's method): the `k_p` nearest particles with a positive
+//!   contribution `c_p = luminance(throughput · weight_p · f(wo, Ψ_p))` (eq. 1-2), gathered
+//!   and turned into a distribution at this very point.
+
+use crate::Rgb;
+use crate::bsdf::{Bsdf, TransportMode};
+use crate::guide::cache::GuideCache;
+use crate::guide::particle_map::{Neighbor, ParticleMap};
+use crate::guide::{ChannelMix, Guide, GuideDistribution, GuideParticle, guides_at};
+use crate::math::{Frame, is_valid_rgb, luminance};
+use crate::rng::Rng;
+use crate::settings::GuideParams;
+use glam::Vec3;
+
+/// Luminance coefficients (Rec. 709), the weights of [`luminance`].
+pub const LUMINANCE: Rgb = Rgb::new(0.2126, 0.7152, 0.0722);
+
+/// A scattering point as the sampler sees it.
+#[derive(Clone, Copy, Debug)]
+pub struct ScatterPoint<'a> {
+    pub p: Vec3,
+    pub bsdf: &'a Bsdf,
+    /// Unit direction back along the path (toward the camera in radiance mode, toward the
+    /// light in importance mode).
+    pub wo: Vec3,
+    pub mode: TransportMode,
+    /// The path's throughput colour: reduces a particle's RGB weight to one number, so that
+    /// per-channel `W_p` steers paths by colour.
+    pub throughput: Rgb,
+}
+
+impl ScatterPoint<'_> {
+    /// The geometric normal on the side `wo` leaves from.
+    #[inline]
+    pub fn side_normal(&self) -> Vec3 {
+        if self.bsdf.ng.dot(self.wo) >= 0.0 {
+            self.bsdf.ng
+        } else {
+            -self.bsdf.ng
+        }
+    }
+
+    /// `c_p = luminance(throughput · weight_p · f(wo, Ψ_p))` (paper eq. 1 and 2).
+    #[inline]
+    pub fn contribution(&self, dir: Vec3, weight: Rgb) -> f32 {
+        let f = self.bsdf.eval(self.wo, dir, self.mode);
+        luminance(self.throughput * weight * f)
+    }
+
+    /// The per-channel factor `a` of the cached distributions' channel mixture: luminance
+    /// coefficients, throughput and the lobes' colour ([`ChannelMix`]).
+    #[inline]
+    pub fn channel_factor(&self) -> Rgb {
+        LUMINANCE * self.throughput * self.bsdf.lobes.colour()
+    }
+}
+
+/// A sampled direction.
+#[derive(Clone, Copy, Debug)]
+pub struct DirectionSample {
+    /// World direction, unit.
+    pub wi: Vec3,
+    /// Density per steradian of the whole mixture (the delta lobe's probability for delta
+    /// BSDF samples).
+    pub pdf_w: f32,
+    /// `f · |wi · n_s| / pdf_w`.
+    pub weight: Rgb,
+    pub delta: bool,
+}
+
+/// Where the guided distributions come from.
+pub enum GuideSource<'a> {
+    /// BSDF sampling alone.
+    Bsdf,
+    /// The paper's method: the `k_p` nearest particles of `map`, turned into a
+    /// distribution by `guide` at every scattering event.
+    PerEvent {
+        map: &'a ParticleMap,
+        guide: &'static dyn Guide,
+        max_dist: f32,
+    },
+    /// Distributions prepared once per region.
+    Cached(&'a GuideCache),
+    /// One distribution everywhere (tests and benchmarks that bypass the maps).
+    Fixed(&'a dyn GuideDistribution),
+}
+
+/// The distribution prepared at the current vertex.
+#[derive(Default)]
+enum Prepared<'a> {
+    #[default]
+    Bsdf,
+    Cached(&'a dyn GuideDistribution),
+    Owned(Box<dyn GuideDistribution>),
+}
+
+/// Per-thread state of the sampler, reused from vertex to vertex.
+#[derive(Default)]
+pub struct SamplerState<'a> {
+    prepared: Prepared<'a>,
+    mix: Option<ChannelMix>,
+    neighbors: Vec<Neighbor>,
+    particles: Vec<GuideParticle>,
+    /// Scattering events prepared at guiding surfaces.
+    pub prepared_events: u64,
+    /// Of those, the events that fell back to BSDF sampling (no region, too few particles).
+    pub fallbacks: u64,
+}
+
+impl SamplerState<'_> {
+    /// True when the current vertex is guided.
+    pub fn guided(&self) -> bool {
+        !matches!(self.prepared, Prepared::Bsdf)
+    }
+
+    fn distribution(&self) -> Option<&dyn GuideDistribution> {
+        match &self.prepared {
+            Prepared::Bsdf => None,
+            Prepared::Cached(d) => Some(*d),
+            Prepared::Owned(d) => Some(d.as_ref()),
+        }
+    }
+}
+
+/// The sampler: a guide source, the mixture probability and the rule of where to guide.
+pub struct GuidedSampler<'a> {
+    pub source: GuideSource<'a>,
+    pub params: GuideParams,
+    pub soft_glossy_max: f32,
+}
+
+impl<'a> GuidedSampler<'a> {
+    /// BSDF sampling alone.
+    pub fn bsdf() -> Self {
+        GuidedSampler {
+            source: GuideSource::Bsdf,
+            params: GuideParams::default(),
+            soft_glossy_max: 0.0,
+        }
+    }
+
+    /// Prepares `state` at a scattering point.
+    pub fn prepare(&self, at: &ScatterPoint, state: &mut SamplerState<'a>) {
+        state.prepared = Prepared::Bsdf;
+        state.mix = None;
+        if matches!(self.source, GuideSource::Bsdf)
+            || !guides_at(&at.bsdf.lobes, self.soft_glossy_max)
+        {
+            return;
+        }
+        state.prepared_events += 1;
+        match &self.source {
+            GuideSource::Bsdf => {}
+            GuideSource::Cached(cache) => {
+                if let Some(dist) = cache
+                    .lookup(at.p, at.side_normal())
+                    .and_then(|r| r.distribution.as_deref())
+                {
+                    state.mix = ChannelMix::new(at.channel_factor(), dist.channel_totals());
+                    if state.mix.is_some() {
+                        state.prepared = Prepared::Cached(dist);
+                    }
+                }
+            }
+            GuideSource::Fixed(dist) => {
+                state.mix = ChannelMix::new(at.channel_factor(), dist.channel_totals());
+                if state.mix.is_some() {
+                    state.prepared = Prepared::Cached(*dist);
+                }
+            }
+            GuideSource::PerEvent {
+                map,
+                guide,
+                max_dist,
+            } => {
+                if let Some(dist) = self.prepare_per_event(map, *guide, *max_dist, at, state) {
+                    state.mix = ChannelMix::new(Rgb::ONE, dist.channel_totals());
+                    if state.mix.is_some() {
+                        state.prepared = Prepared::Owned(dist);
+                    }
+                }
+            }
+        }
+        if !state.guided() {
+            state.fallbacks += 1;
+        }
+    }
+
+    /// The paper's per-event preparation: query, filter, build.
+    fn prepare_per_event(
+        &self,
+        map: &ParticleMap,
+        guide: &dyn Guide,
+        max_dist: f32,
+        at: &ScatterPoint,
+        state: &mut SamplerState,
+    ) -> Option<Box<dyn GuideDistribution>> {
+        let n = at.side_normal();
+        let k = self.params.k_p;
+        // Where the map cannot hold k particles facing this way (the dark side of a wall),
+        // skip the search: the query would report fewer than k.
+        if !map.may_hold(at.p, n, k, max_dist) {
+            return None;
+        }
+        let found = map.query(
+            at.p,
+            n,
+            k,
+            max_dist,
+            |nb| at.contribution(nb.dir, nb.weight),
+            &mut state.neighbors,
+        );
+        if found < k {
+            return None;
+        }
+        state.particles.clear();
+        state.particles.extend(
+            state
+                .neighbors
+                .iter()
+                .map(|nb| GuideParticle {
+                    dir: nb.dir,
+                    weight: Rgb::new(nb.contribution, 0.0, 0.0),
+                })
+                .filter(|p| p.admissible(n, &self.params)),
+        );
+        if state.particles.is_empty() {
+            return None;
+        }
+        guide.build(&Frame::from_z(n), &state.particles, &self.params)
+    }
+
+    /// Draws a direction; `None` when no direction could be drawn (the BSDF's own sampling
+    /// failed). A direction the BSDF does not scatter into comes back with zero weight.
+    pub fn sample(
+        &self,
+        at: &ScatterPoint,
+        state: &SamplerState,
+        rng: &mut Rng,
+    ) -> Option<DirectionSample> {
+        let guide = match (state.distribution(), state.mix) {
+            (Some(d), Some(mix)) if !at.bsdf.is_delta() => Some((d, mix)),
+            _ => None,
+        };
+        let Some((dist, mix)) = guide else {
+            let s = at
+                .bsdf
+                .sample(at.wo, rng.uniform(), rng.uniform2(), at.mode)?;
+            return Some(DirectionSample {
+                wi: s.wi,
+                pdf_w: s.pdf_w,
+                weight: s.weight,
+                delta: s.delta,
+            });
+        };
+        let wi = if rng.uniform() < self.params.p_bsdf {
+            at.bsdf
+                .sample(at.wo, rng.uniform(), rng.uniform2(), at.mode)?
+                .wi
+        } else {
+            dist.sample(&mix, rng)?
+        };
+        let pdf_w = self.mixture_pdf(at, dist, &mix, wi);
+        if !(pdf_w > 0.0 && pdf_w.is_finite()) {
+            return None;
+        }
+        // A direction the BSDF does not scatter into (a footprint across the horizon of an
+        // opaque surface) is still a draw: it comes back with zero weight, so that what
+        // `sample` draws is exactly the density `pdf` describes.
+        let f = at.bsdf.eval(at.wo, wi, at.mode);
+        let weight = f * (wi.dot(at.bsdf.frame.z).abs() / pdf_w);
+        Some(DirectionSample {
+            wi,
+            pdf_w,
+            weight: if is_valid_rgb(weight) {
+                weight
+            } else {
+                Rgb::ZERO
+            },
+            delta: false,
+        })
+    }
+
+    #[inline]
+    fn mixture_pdf(
+        &self,
+        at: &ScatterPoint,
+        dist: &dyn GuideDistribution,
+        mix: &ChannelMix,
+        wi: Vec3,
+    ) -> f32 {
+        let p = self.params.p_bsdf;
+        p * at.bsdf.pdf(at.wo, wi) + (1.0 - p) * dist.pdf(mix, wi)
+    }
+
+    /// Density per steradian with which `sample` returns `wi` (0 for delta BSDFs).
+    pub fn pdf(&self, at: &ScatterPoint, state: &SamplerState, wi: Vec3) -> f32 {
+        match (state.distribution(), &state.mix) {
+            (Some(d), Some(mix)) if !at.bsdf.is_delta() => self.mixture_pdf(at, d, mix, wi),
+            _ => at.bsdf.pdf(at.wo, wi),
+        }
+    }
+}
