@@ -366,6 +366,10 @@ impl GuideDistribution for FootprintDistribution {
         p
     }
 
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+
     fn heap_bytes(&self) -> usize {
         self.caps.capacity() * std::mem::size_of::<Cap>()
             + self.cdf.iter().map(|c| c.capacity() * 4).sum::<usize>()

@@ -157,6 +157,10 @@ impl GuideDistribution for GridDistribution {
         p / self.cell_solid_angle()
     }
 
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+
     fn heap_bytes(&self) -> usize {
         self.cdf.iter().map(|c| c.capacity() * 4).sum()
     }

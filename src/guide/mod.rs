@@ -112,6 +112,8 @@ pub trait GuideDistribution: Send + Sync {
     fn pdf(&self, mix: &ChannelMix, wi: Vec3) -> f32;
     /// Heap bytes held (the guide cache reports its memory).
     fn heap_bytes(&self) -> usize;
+    /// The concrete type, for tests and tools that inspect a prepared distribution.
+    fn as_any(&self) -> &dyn std::any::Any;
 }
 
 /// The extension point of direction sampling: how particles become a distribution.
