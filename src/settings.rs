@@ -203,6 +203,11 @@ pub struct GuideParams {
     pub region_particles: usize,
     /// Most scattering points of the other pass per region of the cache.
     pub region_seeds: usize,
+    /// Particles that reached their surface in fewer segments are left out of the maps that
+    /// guide. Depth-1 photons carry direct light, which next-event estimation samples already;
+    /// depth-1 importons point at the pinhole, which a light path cannot hit (its camera
+    /// connection covers that light). 1 keeps every particle.
+    pub min_depth: u16,
     /// Particles whose `|cos θ_p|` is below this are left out, identically in sampling and
     /// evaluation (a cap confined to the hemisphere would have no room).
     #[serde(skip)]
@@ -221,6 +226,7 @@ impl Default for GuideParams {
             cache: true,
             region_particles: 400,
             region_seeds: 256,
+            min_depth: 2,
             grazing_cos_min: 1e-3,
         }
     }
@@ -270,6 +276,12 @@ impl GuideParams {
             return e(
                 "region_seeds",
                 format!("must be in 8..=1000000, got {}", self.region_seeds),
+            );
+        }
+        if self.min_depth == 0 || self.min_depth > 1024 {
+            return e(
+                "min_depth",
+                format!("must be in 1..=1024, got {}", self.min_depth),
             );
         }
         if !(self.grazing_cos_min > 0.0 && self.grazing_cos_min < 0.5) {

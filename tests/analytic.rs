@@ -114,7 +114,12 @@ fn uniform_environment_lights_a_convex_sphere_exactly() {
                 time: None,
                 max_depth: 6,
                 seed: 500 + r as u64,
-                ..Default::default()
+                // Every photon here carries direct light (depth 1): keep them, so that guiding
+                // happens.
+                guide_params: footprint::settings::GuideParams {
+                    min_depth: 1,
+                    ..Default::default()
+                },
             };
             let out = render(&scene, &opts, |_| {});
             assert!(out.image.all_valid() && out.stats.rejected == 0);

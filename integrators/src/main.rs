@@ -90,6 +90,11 @@ struct GuideParamArgs {
     /// guide.region_seeds, else 256]
     #[arg(long)]
     region_seeds: Option<usize>,
+    /// Leave particles that arrived in fewer segments out of the guiding maps (2: no direct
+    /// light in the photon map, no camera directions in the importance map; 1: keep all)
+    /// [default: guide.min_depth, else 2]
+    #[arg(long)]
+    min_depth: Option<u16>,
 }
 
 impl GuideParamArgs {
@@ -120,6 +125,9 @@ impl GuideParamArgs {
         }
         if let Some(v) = self.region_seeds {
             p.region_seeds = v;
+        }
+        if let Some(v) = self.min_depth {
+            p.min_depth = v;
         }
         p.validate().map_err(|e| anyhow::anyhow!(e.as_flag_error()))
     }
@@ -675,9 +683,10 @@ fn compare_variants(
                 "photons" => maps.photons = num as usize,
                 "region_particles" => opts.guide_params.region_particles = num as usize,
                 "region_seeds" => opts.guide_params.region_seeds = num as usize,
+                "min_depth" => opts.guide_params.min_depth = num as u16,
                 "importons" => maps.importons = num as usize,
                 other => bail!(
-                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, k_g, grid, region_particles, region_seeds, photons or importons)"
+                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, k_g, grid, region_particles, region_seeds, min_depth, photons or importons)"
                 ),
             }
             out.push(make(

@@ -45,12 +45,17 @@ impl BuiltMap {
     }
 }
 
-/// Builds the map of a pass's particles; `measure` returns the heap bytes currently
+/// Builds the map of a pass's particles (those of depth `min_depth` or more); `measure` returns the heap bytes currently
 /// allocated (a counting allocator), so the map's own size is the difference around the
 /// build.
-pub fn build_map(kind: MapKind, pass: PassOutput, measure: &dyn Fn() -> Option<usize>) -> BuiltMap {
+pub fn build_map(
+    kind: MapKind,
+    pass: PassOutput,
+    min_depth: u16,
+    measure: &dyn Fn() -> Option<usize>,
+) -> BuiltMap {
     let before = measure();
-    let map = ParticleMap::build(kind, &pass.particles);
+    let map = ParticleMap::build_from_depth(kind, &pass.particles, min_depth);
     let after = measure();
     let bytes = match (before, after) {
         (Some(b), Some(a)) => Some(a.saturating_sub(b)),
@@ -137,7 +142,7 @@ impl Guidance {
             .flatten();
         let max_dist = scene.map_max_dist();
         let mut make = |kind: MapKind, out: PassOutput, seeds: Option<Vec<_>>| {
-            let built = build_map(kind, out, heap);
+            let built = build_map(kind, out, params.min_depth, heap);
             g.timings.map_builds += built.map.build_time;
             g.summaries.push(built.summary());
             let cache = seeds.map(|s| {

@@ -342,11 +342,19 @@ fn decode_dir8(e: [u8; 2]) -> Vec3 {
 impl ParticleMap {
     /// Builds a map; particles with a non-finite or non-positive weight are dropped.
     pub fn build(kind: MapKind, particles: &[ParticleInput]) -> Self {
+        Self::build_from_depth(kind, particles, 0)
+    }
+
+    /// Builds a map of the particles that reached their surface in at least `min_depth`
+    /// segments (see `GuideParams::min_depth`); particles with a non-finite or non-positive
+    /// weight are dropped.
+    pub fn build_from_depth(kind: MapKind, particles: &[ParticleInput], min_depth: u16) -> Self {
         let start = Instant::now();
         let valid: Vec<&ParticleInput> = particles
             .iter()
             .filter(|p| {
-                p.position.is_finite()
+                p.depth >= min_depth
+                    && p.position.is_finite()
                     && p.weight.is_finite()
                     && p.weight.max_element() > 0.0
                     && p.weight.min_element() >= 0.0
