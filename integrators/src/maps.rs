@@ -92,6 +92,62 @@ pub struct Guidance {
     pub summaries: Vec<String>,
 }
 
+/// What the passes of one render produced (the particles, the other pass's seeds, the
+/// flux accounting), before any map is built: what `Guidance::from_passes` needs.
+#[derive(Default)]
+pub struct Passes {
+    pub light: Option<PassOutput>,
+    pub view: Option<PassOutput>,
+    pub light_time: Duration,
+    pub view_time: Duration,
+}
+
+/// Which passes a guided `method` needs: the light pass for the photon map (camera paths) and
+/// the view pass for the importance map (light paths); with the guide cache, each map's
+/// cache also needs the other pass as its seeds.
+pub fn needed_passes(method: &Method, params: &GuideParams) -> (bool, bool) {
+    if !method.guided() {
+        return (false, false);
+    }
+    let paths = method.integrator.paths();
+    let cache = params.cache;
+    (
+        paths.camera || (cache && paths.light),
+        paths.light || (cache && paths.camera),
+    )
+}
+
+/// Runs the passes `method` needs (with `scene.maps`' path counts).
+pub fn run_passes(
+    scene: &Scene,
+    method: &Method,
+    params: &GuideParams,
+    pass: &PassSettings,
+) -> Passes {
+    let (light, view) = needed_passes(method, params);
+    let bsdf = GuidedSampler::bsdf();
+    let light = light.then(|| {
+        let s = PassSettings {
+            paths: scene.maps.photons,
+            ..pass.clone()
+        };
+        light_pass(scene, &s, &bsdf)
+    });
+    let view = view.then(|| {
+        let s = PassSettings {
+            paths: scene.maps.importons,
+            ..pass.clone()
+        };
+        view_pass(scene, &s, &bsdf)
+    });
+    Passes {
+        light_time: light.as_ref().map(|p| p.stats.time).unwrap_or_default(),
+        view_time: view.as_ref().map(|p| p.stats.time).unwrap_or_default(),
+        light,
+        view,
+    }
+}
+
 impl Guidance {
     /// Runs the passes and builds the maps and caches `method` needs.
     pub fn build(
@@ -101,38 +157,28 @@ impl Guidance {
         pass: &PassSettings,
         heap: &dyn Fn() -> Option<usize>,
     ) -> Self {
+        let passes = run_passes(scene, method, params, pass);
+        Self::from_passes(scene, method, params, passes, heap)
+    }
+
+    /// Builds the maps and caches `method` needs from the passes' output.
+    pub fn from_passes(
+        scene: &Scene,
+        method: &Method,
+        params: &GuideParams,
+        passes: Passes,
+        heap: &dyn Fn() -> Option<usize>,
+    ) -> Self {
         let mut g = Guidance::default();
         if !method.guided() {
             return g;
         }
+        g.timings.light_pass = passes.light_time;
+        g.timings.view_pass = passes.view_time;
+        let (light, view) = (passes.light, passes.view);
         let paths = method.integrator.paths();
         let (photon_map, importance_map) = (paths.camera, paths.light);
         let cache = params.cache;
-        let bsdf = GuidedSampler::bsdf();
-        let light = (photon_map || (cache && importance_map)).then(|| {
-            let out = light_pass(
-                scene,
-                &PassSettings {
-                    paths: scene.maps.photons,
-                    ..pass.clone()
-                },
-                &bsdf,
-            );
-            g.timings.light_pass += out.stats.time;
-            out
-        });
-        let view = (importance_map || (cache && photon_map)).then(|| {
-            let out = view_pass(
-                scene,
-                &PassSettings {
-                    paths: scene.maps.importons,
-                    ..pass.clone()
-                },
-                &bsdf,
-            );
-            g.timings.view_pass += out.stats.time;
-            out
-        });
         // Seeds of each cache: the other pass's scattering points.
         let photon_seeds = (cache && photon_map)
             .then(|| view.as_ref().map(|v| v.seeds()))
