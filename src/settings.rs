@@ -208,6 +208,9 @@ pub struct GuideParams {
     /// depth-1 importons point at the pinhole, which a light path cannot hit (its camera
     /// connection covers that light). 1 keeps every particle.
     pub min_depth: u16,
+    /// The combined image's MIS weights use the densities the guided samplers really draw
+    /// with (with the guide cache: a region lookup per vertex) instead of the unguided ones.
+    pub guided_mis: bool,
     /// Particles whose `|cos θ_p|` is below this are left out, identically in sampling and
     /// evaluation (a cap confined to the hemisphere would have no room).
     #[serde(skip)]
@@ -227,6 +230,7 @@ impl Default for GuideParams {
             region_particles: 400,
             region_seeds: 256,
             min_depth: 2,
+            guided_mis: true,
             grazing_cos_min: 1e-3,
         }
     }

@@ -95,6 +95,10 @@ struct GuideParamArgs {
     /// [default: guide.min_depth, else 2]
     #[arg(long)]
     min_depth: Option<u16>,
+    /// The combined image's MIS weights from the guided samplers' densities (on) or the
+    /// unguided ones (off) [default: guide.guided_mis, else on]
+    #[arg(long, value_parser = ["on", "off"])]
+    guided_mis: Option<String>,
 }
 
 impl GuideParamArgs {
@@ -128,6 +132,9 @@ impl GuideParamArgs {
         }
         if let Some(v) = self.min_depth {
             p.min_depth = v;
+        }
+        if let Some(v) = &self.guided_mis {
+            p.guided_mis = v == "on";
         }
         p.validate().map_err(|e| anyhow::anyhow!(e.as_flag_error()))
     }
@@ -827,7 +834,7 @@ fn render_command(
         (
             "footprint/guide_params".to_string(),
             format!(
-                "k_p={} k_g={}x{} k_r={} p_bsdf={} radius_rule={} grid={}x{} cache={} region_particles={} region_seeds={} photons={} importons={} max_dist={}",
+                "k_p={} k_g={}x{} k_r={} p_bsdf={} radius_rule={} grid={}x{} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} photons={} importons={} max_dist={}",
                 p.k_p,
                 p.k_g_side,
                 p.k_g_side,
@@ -839,6 +846,8 @@ fn render_command(
                 if p.cache { "on" } else { "off" },
                 p.region_particles,
                 p.region_seeds,
+                p.min_depth,
+                if p.guided_mis { "on" } else { "off" },
                 scene.maps.photons,
                 scene.maps.importons,
                 scene.map_max_dist()

@@ -10,17 +10,23 @@
 //! area-product measure under that strategy, and the weight is the power heuristic
 //! `w_s = p_s² / (p0² + p1² + pk²)`.
 //!
-//! The densities use **unguided** direction pdfs (the BSDF's, the light's emission, the
-//! camera's), whichever sampler actually drew the path. The weights stay a partition of unity
-//! for every path, so the combined estimate stays unbiased (Veach 1997, §9.2.2: any weights
-//! that sum to one over the strategies able to make a path will do).
+//! The direction densities come from [`Densities`]: either the **unguided** ones (the BSDF's,
+//! the light's emission, the camera's), or the **guided** ones, the mixture pdfs the guided
+//! samplers really draw with (a region lookup and a pdf with the guide cache), evaluated with
+//! a white path colour so that both subpaths compute the same value for the same path.
+//! Either way the weights are a partition of unity for every path, so the combined estimate
+//! stays unbiased (Veach 1997, §9.2.2: any weights that sum to one over the strategies able to
+//! make a path will do); the guided densities weigh each path by how likely the guided
+//! strategies really make it.
 //!
 //! Both directions are counted equally: one camera path per pixel per pass and one light path
 //! per pixel per pass, with the camera pdf taken over the whole image, give equal sample
 //! counts. Delta (specular) steps have area density 1 in both directions, as in pbrt-v3's
 //! `MISWeight`; connections at delta vertices are impossible and get density 0.
 
-use footprint::bsdf::Bsdf;
+use footprint::Rgb;
+use footprint::bsdf::{Bsdf, Lobes, TransportMode};
+use footprint::guide::sampler::{GuidedSampler, ScatterPoint};
 use footprint::scene::Scene;
 use footprint::scene::light::{Light, LightSample};
 use glam::Vec3;
@@ -41,25 +47,79 @@ pub fn to_area(pdf_w: f64, from: Vec3, to: Vec3, n_to: Option<Vec3>) -> f64 {
     pdf_w * cos / d2
 }
 
-/// The unguided area density of sampling `next` from a vertex with `bsdf` at `p`, given the
-/// path's other neighbour in direction `toward_other` (unit). `delta`: the path's direction
-/// at this vertex came from a delta lobe (per sample, not per BSDF: smooth plastic mixes a
-/// delta coat with a diffuse base); such steps give 1 (in both directions), and the BSDF's
-/// `pdf`, which covers its non-delta lobes only, is used for the others.
-#[inline]
-pub fn step_area(
-    bsdf: &Bsdf,
-    delta: bool,
-    p: Vec3,
-    toward_other: Vec3,
-    next: Vec3,
-    n_next: Option<Vec3>,
-) -> f64 {
-    if delta || bsdf.is_delta() {
-        return 1.0;
+/// The direction densities of the weights: unguided, or those of the guided samplers.
+pub struct Densities<'s, 'a> {
+    /// Draws camera-path directions (over the photon map).
+    pub camera: &'s GuidedSampler<'a>,
+    /// Draws light-path directions and emission at area lights (over the importance map).
+    pub light: &'s GuidedSampler<'a>,
+    pub guided: bool,
+}
+
+impl Densities<'_, '_> {
+    /// Solid-angle density of `wi` at a vertex with `bsdf` at `p` for a path that arrived
+    /// from direction `wo`: a camera path's (`Radiance`) or a light path's (`Importance`).
+    #[inline]
+    pub fn direction(&self, mode: TransportMode, bsdf: &Bsdf, p: Vec3, wo: Vec3, wi: Vec3) -> f32 {
+        if !self.guided {
+            return bsdf.pdf(wo, wi);
+        }
+        let sampler = match mode {
+            TransportMode::Radiance => self.camera,
+            TransportMode::Importance => self.light,
+        };
+        let at = ScatterPoint {
+            p,
+            bsdf,
+            wo,
+            mode,
+            throughput: Rgb::ONE,
+        };
+        sampler.mis_pdf(&at, wi)
     }
-    let wi = (next - p).normalize_or_zero();
-    to_area(bsdf.pdf(toward_other, wi) as f64, p, next, n_next)
+
+    /// Solid-angle density of emitting in `dir` from the point `p` (normal `n`) of `light`;
+    /// guided at area lights as the light tracer guides them (the cosine lobe as a white
+    /// Lambertian).
+    #[inline]
+    pub fn emission(&self, light: &Light, p: Vec3, n: Option<Vec3>, dir: Vec3) -> f32 {
+        match n {
+            Some(n) if self.guided => {
+                let lobe = Bsdf::new(Lobes::Diffuse { kd: Rgb::ONE }, n, n);
+                self.direction(TransportMode::Importance, &lobe, p, n, dir)
+            }
+            _ => light.pdf_le_dir(dir),
+        }
+    }
+
+    /// The area density of sampling `next` from a vertex with `bsdf` at `p`, given the
+    /// path's other neighbour in direction `toward_other` (unit), for a path of `mode`.
+    /// `delta`: the path's direction at this vertex came from a delta lobe (per sample, not
+    /// per BSDF: smooth plastic mixes a delta coat with a diffuse base); such steps give 1
+    /// (in both directions).
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    pub fn step(
+        &self,
+        mode: TransportMode,
+        bsdf: &Bsdf,
+        delta: bool,
+        p: Vec3,
+        toward_other: Vec3,
+        next: Vec3,
+        n_next: Option<Vec3>,
+    ) -> f64 {
+        if delta || bsdf.is_delta() {
+            return 1.0;
+        }
+        let wi = (next - p).normalize_or_zero();
+        to_area(
+            self.direction(mode, bsdf, p, toward_other, wi) as f64,
+            p,
+            next,
+            n_next,
+        )
+    }
 }
 
 /// Power-heuristic weight of the strategy with density `own` among `all` (scaled by the
@@ -128,7 +188,8 @@ impl Recent {
 }
 
 /// The running densities of a camera subpath `x0 (camera), x1, ..., xj`.
-pub struct CameraMis {
+pub struct CameraMis<'d> {
+    d: &'d Densities<'d, 'd>,
     /// Product of the camera-direction area densities up to `xj`.
     d_fwd: f64,
     /// Product of the light-direction area densities of `x1 .. x_{j-2}`.
@@ -140,8 +201,8 @@ pub struct CameraMis {
     recent: Recent,
 }
 
-impl CameraMis {
-    pub fn new(camera: Vec3) -> Self {
+impl<'d> CameraMis<'d> {
+    pub fn new(camera: Vec3, d: &'d Densities<'d, 'd>) -> Self {
         let cam = MisVertex {
             p: camera,
             n: None,
@@ -149,6 +210,7 @@ impl CameraMis {
             delta: false,
         };
         CameraMis {
+            d,
             d_fwd: 1.0,
             b_back: 1.0,
             last_fwd: 0.0,
@@ -157,6 +219,7 @@ impl CameraMis {
     }
 
     /// The path arrived at `xj = p` (normal `ng`, `depth = j`) along `dir`.
+    #[allow(clippy::too_many_arguments)]
     pub fn arrive(&mut self, scene: &Scene, depth: u32, dir: Vec3, p: Vec3, ng: Vec3) {
         let cam = &scene.camera;
         let [b0, b1] = self.recent.before;
@@ -167,7 +230,8 @@ impl CameraMis {
                 p,
                 Some(ng),
             ),
-            Some(b) => step_area(
+            Some(b) => self.d.step(
+                TransportMode::Radiance,
                 &b,
                 b0.delta,
                 b0.p,
@@ -180,7 +244,15 @@ impl CameraMis {
         // Light-direction density of x_{j-2} from x_{j-1}, now that xj is known.
         if depth >= 3 {
             if let Some(b) = b0.bsdf {
-                self.b_back *= step_area(&b, b0.delta, b0.p, dir, b1.p, b1.n);
+                self.b_back *= self.d.step(
+                    TransportMode::Importance,
+                    &b,
+                    b0.delta,
+                    b0.p,
+                    dir,
+                    b1.p,
+                    b1.n,
+                );
             }
         }
     }
@@ -200,7 +272,11 @@ impl CameraMis {
         } else if self.recent.first_delta {
             0.0
         } else {
-            let emit = to_area(light.pdf_le_dir(wo) as f64, p, b0.p, b0.n);
+            let n = match light {
+                Light::Area { n, .. } => Some(*n),
+                _ => None,
+            };
+            let emit = to_area(self.d.emission(light, p, n, wo) as f64, p, b0.p, b0.n);
             p_l * self.b_back * emit
         };
         weight(p0, [p0, p1, pk])
@@ -226,16 +302,23 @@ impl CameraMis {
         let fwd_l = if ls.delta {
             0.0
         } else {
-            step_area(bsdf, false, p, wo, ls.p, ls.n)
+            self.d
+                .step(TransportMode::Radiance, bsdf, false, p, wo, ls.p, ls.n)
         };
         let p0 = self.d_fwd * fwd_l;
         let p1 = self.d_fwd * p_l;
         let pk = if depth >= 2 && self.recent.first_delta {
             0.0
         } else {
-            let emit = to_area(light.pdf_le_dir(-ls.wi) as f64, ls.p, p, Some(ng));
+            let emit = to_area(
+                self.d.emission(light, ls.p, ls.n, -ls.wi) as f64,
+                ls.p,
+                p,
+                Some(ng),
+            );
             let back = if depth >= 2 {
-                step_area(bsdf, false, p, ls.wi, b0.p, b0.n)
+                self.d
+                    .step(TransportMode::Importance, bsdf, false, p, ls.wi, b0.p, b0.n)
             } else {
                 1.0
             };
@@ -251,7 +334,8 @@ impl CameraMis {
 }
 
 /// The running densities of a light subpath `y0 (light point), y1, ..., yj`.
-pub struct LightMis {
+pub struct LightMis<'d> {
+    d: &'d Densities<'d, 'd>,
     /// Light-direction area densities, the light position's included.
     l_fwd: f64,
     /// Camera-direction densities of `y1 .. y_{j-2}` (each from its successor).
@@ -266,10 +350,10 @@ pub struct LightMis {
     recent: Recent,
 }
 
-impl LightMis {
+impl<'d> LightMis<'d> {
     /// A light subpath starting at the point `p` (normal `n`, `None` for a point light) of
     /// light `li`.
-    pub fn new(scene: &Scene, li: u32, p: Vec3, n: Option<Vec3>) -> Self {
+    pub fn new(scene: &Scene, d: &'d Densities<'d, 'd>, li: u32, p: Vec3, n: Option<Vec3>) -> Self {
         let p_l = light_pos_pdf(scene, li);
         let start = MisVertex {
             p,
@@ -278,6 +362,7 @@ impl LightMis {
             delta: false,
         };
         LightMis {
+            d,
             l_fwd: p_l,
             r_prod: 1.0,
             pf_light: 0.0,
@@ -306,11 +391,18 @@ impl LightMis {
     }
 
     /// The path arrived at `yj = p` (normal `ng`, `depth = j`) along `dir`.
+    #[allow(clippy::too_many_arguments)]
     pub fn arrive(&mut self, light: &Light, depth: u32, dir: Vec3, p: Vec3, ng: Vec3) {
         let [b0, b1] = self.recent.before;
         self.l_fwd *= match b0.bsdf {
-            None => to_area(light.pdf_le_dir(dir) as f64, b0.p, p, Some(ng)),
-            Some(b) => step_area(
+            None => to_area(
+                self.d.emission(light, b0.p, b0.n, dir) as f64,
+                b0.p,
+                p,
+                Some(ng),
+            ),
+            Some(b) => self.d.step(
+                TransportMode::Importance,
                 &b,
                 b0.delta,
                 b0.p,
@@ -321,15 +413,16 @@ impl LightMis {
         };
         if depth >= 2 {
             if let Some(b) = b0.bsdf {
-                let d = if depth == 2 && self.delta_light {
+                let back = if depth == 2 && self.delta_light {
                     0.0 // a camera path cannot hit a delta light
                 } else {
-                    step_area(&b, b0.delta, b0.p, dir, b1.p, b1.n)
+                    self.d
+                        .step(TransportMode::Radiance, &b, b0.delta, b0.p, dir, b1.p, b1.n)
                 };
                 if depth == 2 {
-                    self.pf_light = d
+                    self.pf_light = back
                 } else {
-                    self.r_prod *= d
+                    self.r_prod *= back
                 }
             }
         }
@@ -337,6 +430,7 @@ impl LightMis {
 
     /// Weight of the camera connection from `yj = p` (BSDF `bsdf`, normal `ng`, direction to
     /// the camera `wi`).
+    #[allow(clippy::too_many_arguments)]
     pub fn weight_camera_connection(
         &self,
         scene: &Scene,
@@ -357,7 +451,8 @@ impl LightMis {
         let now = if depth == 1 && self.delta_light {
             0.0
         } else {
-            step_area(bsdf, false, p, wi, b0.p, b0.n)
+            self.d
+                .step(TransportMode::Radiance, bsdf, false, p, wi, b0.p, b0.n)
         };
         let (p0, p1) = if depth == 1 {
             (cam_area * now, cam_area * self.p_l)

@@ -148,6 +148,7 @@ pub fn render_with(
         max_depth: opts.max_depth,
         camera_sampler: guidance.camera_sampler(scene, &opts.method, &opts.guide_params),
         light_sampler: guidance.light_sampler(scene, &opts.method, &opts.guide_params),
+        guided_mis: opts.guide_params.guided_mis,
     };
 
     // ---- Passes ----

@@ -308,6 +308,33 @@ impl<'a> GuidedSampler<'a> {
         p * at.bsdf.pdf(at.wo, wi) + (1.0 - p) * dist.pdf(mix, wi)
     }
 
+    /// The density with which this sampler draws `wi` at `at` for a path of white colour (the
+    /// channel mixture without the throughput), without preparing a state: what the combined
+    /// image's guided MIS weights use. Both subpaths must compute the same value for the same
+    /// path, and neither knows the colour the other would have carried there. Per-event
+    /// sources give the BSDF's pdf (their distribution would need a query).
+    pub fn mis_pdf(&self, at: &ScatterPoint, wi: Vec3) -> f32 {
+        let bsdf_pdf = at.bsdf.pdf(at.wo, wi);
+        if at.bsdf.is_delta() || !guides_at(&at.bsdf.lobes, self.soft_glossy_max) {
+            return bsdf_pdf;
+        }
+        let dist = match &self.source {
+            GuideSource::Cached(cache) => cache
+                .lookup(at.p, at.side_normal())
+                .and_then(|r| r.distribution.as_deref()),
+            GuideSource::Fixed(d) => Some(*d),
+            GuideSource::Bsdf | GuideSource::PerEvent { .. } => None,
+        };
+        let white = LUMINANCE * at.bsdf.lobes.colour();
+        match dist.and_then(|d| ChannelMix::new(white, d.channel_totals()).map(|m| (d, m))) {
+            Some((d, mix)) => {
+                let p = self.params.p_bsdf;
+                p * bsdf_pdf + (1.0 - p) * d.pdf(&mix, wi)
+            }
+            None => bsdf_pdf,
+        }
+    }
+
     /// Density per steradian with which `sample` returns `wi` (0 for delta BSDFs).
     pub fn pdf(&self, at: &ScatterPoint, state: &SamplerState, wi: Vec3) -> f32 {
         match (state.distribution(), &state.mix) {

@@ -40,6 +40,7 @@ impl Integrator for Combined {
         out: &mut [Rgb],
     ) {
         let cam = &ctx.scene.camera;
+        let densities = ctx.densities();
         let c = path_tracing::trace(
             ctx.scene,
             cam.position,
@@ -48,7 +49,7 @@ impl Integrator for Combined {
             &ctx.camera_sampler,
             state,
             rng,
-            CameraMis::new(cam.position),
+            CameraMis::new(cam.position, &densities),
         );
         out[0] += c.share;
         out[1] += c.pt;
@@ -63,6 +64,9 @@ impl Integrator for Combined {
         let [combined, _, lt] = splats else {
             return;
         };
-        light_tracing::trace::<LightMis>(ctx, rng, state, lt, Some(combined));
+        let densities = ctx.densities();
+        light_tracing::trace(ctx, rng, state, lt, Some(combined), |li, p, n| {
+            LightMis::new(ctx.scene, &densities, li, p, n)
+        });
     }
 }

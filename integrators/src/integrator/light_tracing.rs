@@ -65,13 +65,12 @@ impl Integrator for LightTracing {
         state: &mut SamplerState<'a>,
         splats: &mut [SplatList],
     ) {
-        trace::<()>(ctx, rng, state, &mut splats[0], None);
+        trace(ctx, rng, state, &mut splats[0], None, |_, _, _| ());
     }
 }
 
 /// A second estimate a light path feeds, with its own weights for the same connections.
 pub trait LightShare {
-    fn start(scene: &Scene, li: u32, p: Vec3, n: Option<Vec3>) -> Self;
     /// Weight of the light point itself seen by the camera.
     fn light_seen(&self, scene: &Scene, to_camera: Vec3) -> f32;
     fn arrive(&mut self, light: &Light, v: &Vertex);
@@ -81,7 +80,6 @@ pub trait LightShare {
 }
 
 impl LightShare for () {
-    fn start(_scene: &Scene, _li: u32, _p: Vec3, _n: Option<Vec3>) -> Self {}
     fn light_seen(&self, _scene: &Scene, _to_camera: Vec3) -> f32 {
         0.0
     }
@@ -92,10 +90,7 @@ impl LightShare for () {
     fn scattered(&mut self, _v: &Vertex, _s: &DirectionSample) {}
 }
 
-impl LightShare for LightMis {
-    fn start(scene: &Scene, li: u32, p: Vec3, n: Option<Vec3>) -> Self {
-        LightMis::new(scene, li, p, n)
-    }
+impl LightShare for LightMis<'_> {
     fn light_seen(&self, scene: &Scene, to_camera: Vec3) -> f32 {
         self.weight_light_seen(scene, to_camera)
     }
@@ -111,13 +106,14 @@ impl LightShare for LightMis {
 }
 
 /// Traces one light path and splats its camera connections into `lt`, and into `share`
-/// weighted by `W`'s running weights.
+/// weighted by the running weights `weights(light, point, normal)` makes at the light point.
 pub fn trace<'a, W: LightShare>(
     ctx: &Context<'a>,
     rng: &mut Rng,
     state: &mut SamplerState<'a>,
     lt: &mut SplatList,
     share: Option<&mut SplatList>,
+    weights: impl FnOnce(u32, Vec3, Option<Vec3>) -> W,
 ) {
     let scene = ctx.scene;
     let cam = &scene.camera;
@@ -128,7 +124,7 @@ pub fn trace<'a, W: LightShare>(
         return;
     };
     let mut share = share.filter(|_| !light.is_environment());
-    let weights = W::start(scene, li as u32, em.p, em.n);
+    let weights = weights(li as u32, em.p, em.n);
 
     // ---- The light vertex seen directly by the camera (not the environment's disk) ----
     if let Some(conn) = cam.connect(em.p).filter(|_| !light.is_environment()) {

@@ -33,6 +33,20 @@ pub struct Context<'a> {
     pub max_depth: u32,
     pub camera_sampler: GuidedSampler<'a>,
     pub light_sampler: GuidedSampler<'a>,
+    /// The combined image's MIS weights use the guided samplers' densities (else the
+    /// unguided ones).
+    pub guided_mis: bool,
+}
+
+impl<'a> Context<'a> {
+    /// The direction densities of the combined image's weights.
+    pub fn densities(&self) -> crate::mis::Densities<'_, 'a> {
+        crate::mis::Densities {
+            camera: &self.camera_sampler,
+            light: &self.light_sampler,
+            guided: self.guided_mis,
+        }
+    }
 }
 
 /// Which paths one pass traces.

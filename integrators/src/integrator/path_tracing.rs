@@ -90,7 +90,7 @@ impl CameraShare for () {
     const ACTIVE: bool = false;
 }
 
-impl CameraShare for CameraMis {
+impl CameraShare for CameraMis<'_> {
     const ACTIVE: bool = true;
     fn arrive(&mut self, scene: &Scene, v: &Vertex) {
         CameraMis::arrive(self, scene, v.depth, -v.wo, v.hit.p, v.hit.ng);
