@@ -116,6 +116,12 @@ pub struct MapSettings {
     /// Blinn exponents up to this are "soft glossy" (particles stored, footprints used);
     /// above it "strongly glossy" (treated like specular).
     pub soft_glossy_max: f32,
+    /// Rounds of passes that refine each other: round `r + 1`'s light pass is guided by
+    /// round `r`'s importance map (photons go where the camera looks) and its view pass by
+    /// round `r`'s photon map (importons go where light comes from). Each round shoots twice
+    /// the paths of the one before; the last shoots `photons` and `importons`, and only its
+    /// particles make the maps. 1: one unguided round.
+    pub rounds: u32,
 }
 
 impl Default for MapSettings {
@@ -125,6 +131,7 @@ impl Default for MapSettings {
             importons: 200_000,
             max_dist: None,
             soft_glossy_max: 100.0,
+            rounds: 1,
         }
     }
 }
@@ -148,6 +155,9 @@ impl MapSettings {
             if !(d.is_finite() && d > 0.0) {
                 return e("max_dist", format!("must be a positive distance, got {d}"));
             }
+        }
+        if self.rounds == 0 || self.rounds > 8 {
+            return e("rounds", format!("must be in 1..=8, got {}", self.rounds));
         }
         if !(self.soft_glossy_max.is_finite() && self.soft_glossy_max >= 0.0) {
             return e(
@@ -230,7 +240,7 @@ impl Default for GuideParams {
             region_particles: 400,
             region_seeds: 256,
             min_depth: 2,
-            guided_mis: true,
+            guided_mis: false,
             grazing_cos_min: 1e-3,
         }
     }

@@ -120,6 +120,7 @@ fn uniform_environment_lights_a_convex_sphere_exactly() {
                     min_depth: 1,
                     ..Default::default()
                 },
+                ..Default::default()
             };
             let out = render(&scene, &opts, |_| {});
             assert!(out.image.all_valid() && out.stats.rejected == 0);

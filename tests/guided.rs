@@ -38,11 +38,11 @@ fn small(name: &str, w: u32, h: u32, particles: usize) -> Scene {
 fn opts(method: &str, spp: u32, max_depth: u32, seed: u64) -> RenderOptions {
     RenderOptions {
         method: Method::parse(method).unwrap(),
-        guide_params: Default::default(),
         spp,
         time: None,
         max_depth,
         seed,
+        ..Default::default()
     }
 }
 

@@ -98,7 +98,19 @@ fn effect_analysis_is_right_for_each_scene() {
 fn equal_seeds_give_equal_images_whatever_the_thread_count() {
     let mut scene = load_scene(&scene_path("cornell")).unwrap();
     scene.camera = scene.camera.with_resolution(48, 40).unwrap();
-    for integrator in ["pt", "lt"] {
+    // A tent filter: camera samples are splatted into neighbouring rows too.
+    let mut tent = scene.camera.clone();
+    tent.filter =
+        footprint::film::filter::PixelFilter::new(footprint::film::filter::FilterKind::Tent {
+            radius: 1.0,
+        });
+    for (integrator, filtered) in [("pt", false), ("lt", false), ("combined", true)] {
+        let mut scene = load_scene(&scene_path("cornell")).unwrap();
+        scene.camera = if filtered {
+            tent.clone()
+        } else {
+            scene.camera.with_resolution(48, 40).unwrap()
+        };
         let run = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
@@ -109,7 +121,7 @@ fn equal_seeds_give_equal_images_whatever_the_thread_count() {
         let (a, b, c) = (run(1), run(2), run(5));
         assert!(
             a.pixels == b.pixels && b.pixels == c.pixels,
-            "{integrator:?}: image depends on the thread count"
+            "{integrator:?} (filtered {filtered}): image depends on the thread count"
         );
         let other = {
             let pool = rayon::ThreadPoolBuilder::new()

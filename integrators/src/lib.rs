@@ -4,6 +4,7 @@
 //!   and the combined image;
 //! * [`walk`]: the one path loop (vertex, Russian roulette, spawn) that the integrators and
 //!   both particle passes share;
+//! * [`emit`]: where light paths start (light choice, guided emission at area lights);
 //! * [`mis`]: the combined image's weights, kept as running quantities per subpath;
 //! * [`passes`]: the light pass (photon map) and the view pass (importance map);
 //! * [`maps`]: building the maps and guide caches a method needs, and pictures of the maps;
@@ -12,6 +13,7 @@
 //! * [`compare`]: equal-time comparisons, error against time, parameter sweeps.
 
 pub mod compare;
+pub mod emit;
 pub mod integrator;
 pub mod maps;
 pub mod method;

@@ -177,6 +177,10 @@ enum Command {
         /// Worker threads [default: all cores]
         #[arg(long)]
         threads: Option<usize>,
+        /// How camera samples reach the film: splat into every pixel under the filter
+        /// (Mitsuba, pbrt-v3) or filter importance sampling (pbrt-v4; uncorrelated pixels)
+        #[arg(long, value_enum, default_value_t = footprint::film::FilmMode::Splat)]
+        film: footprint::film::FilmMode,
         #[command(flatten)]
         params: GuideParamArgs,
         #[command(flatten)]
@@ -343,6 +347,12 @@ struct MapArgs {
     /// maps.soft_glossy_max, else 100]
     #[arg(long, allow_negative_numbers = true)]
     soft_glossy_max: Option<f32>,
+    /// Rounds of passes that refine each other: each round's light pass is guided by the
+    /// round before's importance map, its view pass by the photon map; each round shoots
+    /// twice the paths of the one before, the last the full counts [default: the scene's
+    /// maps.rounds, else 1]
+    #[arg(long)]
+    map_rounds: Option<u32>,
 }
 
 impl MapArgs {
@@ -360,6 +370,9 @@ impl MapArgs {
         }
         if let Some(v) = self.soft_glossy_max {
             m.soft_glossy_max = v;
+        }
+        if let Some(v) = self.map_rounds {
+            m.rounds = v;
         }
         m.validate().map_err(|e| anyhow::anyhow!(e.as_flag_error()))
     }
@@ -438,6 +451,7 @@ fn run(cli: Cli) -> Result<()> {
             resolution,
             threads,
             guide,
+            film,
             params,
             maps,
             import,
@@ -462,6 +476,7 @@ fn run(cli: Cli) -> Result<()> {
                 opts.method.guide = Method::guide(&g).map_err(anyhow::Error::msg)?;
             }
             params.apply(&mut opts.guide_params)?;
+            opts.film = film;
             if let Some(s) = spp {
                 opts.spp = s;
                 opts.time = None;
@@ -692,8 +707,9 @@ fn compare_variants(
                 "region_seeds" => opts.guide_params.region_seeds = num as usize,
                 "min_depth" => opts.guide_params.min_depth = num as u16,
                 "importons" => maps.importons = num as usize,
+                "map_rounds" => maps.rounds = num as u32,
                 other => bail!(
-                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, k_g, grid, region_particles, region_seeds, min_depth, photons or importons)"
+                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, k_g, grid, region_particles, region_seeds, min_depth, photons, importons or map_rounds)"
                 ),
             }
             out.push(make(
@@ -831,6 +847,10 @@ fn render_command(
             opts.method.guide.name().to_string(),
         ),
         ("footprint/method".to_string(), opts.method.name()),
+        (
+            "footprint/film".to_string(),
+            format!("{:?} {:?}", opts.film, scene.camera.filter.kind),
+        ),
         (
             "footprint/guide_params".to_string(),
             format!(

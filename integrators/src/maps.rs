@@ -98,8 +98,12 @@ pub struct Guidance {
 pub struct Passes {
     pub light: Option<PassOutput>,
     pub view: Option<PassOutput>,
+    /// Time of the light passes (and, with several rounds, of the intermediate rounds' map
+    /// and cache builds) and of the view passes.
     pub light_time: Duration,
     pub view_time: Duration,
+    /// One line per round when there are several.
+    pub rounds: Vec<String>,
 }
 
 /// Which passes a guided `method` needs: the light pass for the photon map (camera paths) and
@@ -117,35 +121,137 @@ pub fn needed_passes(method: &Method, params: &GuideParams) -> (bool, bool) {
     )
 }
 
-/// Runs the passes `method` needs (with `scene.maps`' path counts).
+/// Runs the passes `method` needs (with `scene.maps`' path counts), in `scene.maps.rounds`
+/// rounds that refine each other (see `MapSettings::rounds`; docs/method.md, "Maps that
+/// refine each other").
 pub fn run_passes(
     scene: &Scene,
     method: &Method,
     params: &GuideParams,
     pass: &PassSettings,
 ) -> Passes {
-    let (light, view) = needed_passes(method, params);
-    let bsdf = GuidedSampler::bsdf();
-    let light = light.then(|| {
-        let s = PassSettings {
-            paths: scene.maps.photons,
-            ..pass.clone()
+    let (need_light, need_view) = needed_passes(method, params);
+    let rounds = if need_light || need_view {
+        scene.maps.rounds.max(1)
+    } else {
+        1
+    };
+    let mut out = Passes::default();
+    // The guidance of the previous round (both maps and caches; none in the first round).
+    let mut previous: Option<Guidance> = None;
+    let both = Method {
+        integrator: crate::integrator::find_integrator("combined").expect("registered"),
+        guide: method.guide,
+    };
+    let round_params = GuideParams {
+        cache: true,
+        ..params.clone()
+    };
+    for r in 0..rounds {
+        let last = r + 1 == rounds;
+        // Twice the paths of the round before; the last round shoots the full count.
+        let share = 0.5f64.powi((rounds - 1 - r) as i32);
+        let count = |n: usize| ((n as f64 * share) as usize).max(1);
+        let seed = if last {
+            pass.seed
+        } else {
+            pass.seed ^ (0x9e37_79b9_7f4a_7c15u64.wrapping_mul(r as u64 + 1))
         };
-        light_pass(scene, &s, &bsdf)
-    });
-    let view = view.then(|| {
-        let s = PassSettings {
-            paths: scene.maps.importons,
-            ..pass.clone()
+        let bsdf = GuidedSampler::bsdf();
+        let (light_sampler, view_sampler) = match &previous {
+            Some(g) => (
+                g.light_sampler(scene, &both, &round_params),
+                g.camera_sampler(scene, &both, &round_params),
+            ),
+            None => (GuidedSampler::bsdf(), GuidedSampler::bsdf()),
         };
-        view_pass(scene, &s, &bsdf)
-    });
-    Passes {
-        light_time: light.as_ref().map(|p| p.stats.time).unwrap_or_default(),
-        view_time: view.as_ref().map(|p| p.stats.time).unwrap_or_default(),
-        light,
-        view,
+        let light = (need_light || !last).then(|| {
+            let s = PassSettings {
+                paths: count(scene.maps.photons),
+                seed,
+                ..pass.clone()
+            };
+            light_pass(scene, &s, if r == 0 { &bsdf } else { &light_sampler })
+        });
+        let view = (need_view || !last).then(|| {
+            let s = PassSettings {
+                paths: count(scene.maps.importons),
+                seed,
+                ..pass.clone()
+            };
+            view_pass(scene, &s, if r == 0 { &bsdf } else { &view_sampler })
+        });
+        let round = Passes {
+            light_time: light.as_ref().map(|p| p.stats.time).unwrap_or_default(),
+            view_time: view.as_ref().map(|p| p.stats.time).unwrap_or_default(),
+            light,
+            view,
+            rounds: Vec::new(),
+        };
+        out.light_time += round.light_time;
+        out.view_time += round.view_time;
+        if rounds > 1 {
+            out.rounds.push(round.summary(scene, r));
+        }
+        if last {
+            out.light = round.light;
+            out.view = round.view;
+        } else {
+            drop((light_sampler, view_sampler));
+            let g = Guidance::from_passes(scene, &both, &round_params, round, &|| None);
+            out.light_time += g.timings.map_builds + g.timings.cache_builds;
+            previous = Some(g);
+        }
     }
+    out
+}
+
+impl Passes {
+    /// One line on a round: paths, particles, the share of particles on surfaces the
+    /// camera sees, and how often the guided passes fell back to BSDF sampling.
+    fn summary(&self, scene: &Scene, round: u32) -> String {
+        let side = |name: &str, p: &Option<PassOutput>| match p {
+            Some(p) => format!(
+                "{name}: {} paths, {} particles, {:.1}% seen by the camera, {}",
+                p.stats.paths,
+                p.particles.len(),
+                100.0 * seen_fraction(scene, &p.particles),
+                if p.stats.guided_events > 0 {
+                    format!(
+                        "guided, {:.1}% fallbacks",
+                        100.0 * p.stats.fallbacks as f64 / p.stats.guided_events as f64
+                    )
+                } else {
+                    "unguided".to_string()
+                }
+            ),
+            None => format!("{name}: none"),
+        };
+        format!(
+            "map round {}: {}; {}",
+            round + 1,
+            side("light pass", &self.light),
+            side("view pass", &self.view)
+        )
+    }
+}
+
+/// The fraction of `particles` on surfaces the camera sees directly (inside the image,
+/// unoccluded), from up to 20,000 of them spread evenly over the list.
+pub fn seen_fraction(scene: &Scene, particles: &[ParticleInput]) -> f64 {
+    if particles.is_empty() {
+        return 0.0;
+    }
+    let step = particles.len().div_ceil(20_000);
+    let sample: Vec<&ParticleInput> = particles.iter().step_by(step).collect();
+    let seen = sample
+        .par_iter()
+        .filter(|p| {
+            scene.camera.connect(p.position).is_some()
+                && scene.visible_from_camera(p.position, p.normal)
+        })
+        .count();
+    seen as f64 / sample.len() as f64
 }
 
 impl Guidance {
@@ -175,6 +281,7 @@ impl Guidance {
         }
         g.timings.light_pass = passes.light_time;
         g.timings.view_pass = passes.view_time;
+        g.summaries.extend(passes.rounds);
         let (light, view) = (passes.light, passes.view);
         let paths = method.integrator.paths();
         let (photon_map, importance_map) = (paths.camera, paths.light);

@@ -1,9 +1,9 @@
 //! The two particle passes (Hey & Purgathofer 2001, §2.1; docs/method.md, "Symmetry"):
 //!
 //! * the **light pass** emits photons from the lights in proportion to power (area lights
-//!   uniformly in area and cosine-weighted in direction, spot lights in their cone in
-//!   proportion to the falloff, point lights uniformly) and traces them in importance mode;
-//!   each carries flux `Φ_p`;
+//!   uniformly in area and cosine-weighted in direction, or guided by an importance map,
+//!   [`crate::emit`]; spot lights in their cone in proportion to the falloff, point lights
+//!   uniformly) and traces them in importance mode; each carries flux `Φ_p`;
 //! * the **view pass** shoots importons from the camera through the image, uniformly in
 //!   raster position, which distributes them like the camera's importance `W_e` (the first
 //!   segment's weight `W_e cos θ / pdf` is exactly 1 for a pinhole), and traces them in
@@ -25,6 +25,7 @@
 //! Parallel with rayon; paths are traced in fixed chunks with per-path random streams and
 //! concatenated in chunk order, so a map is reproducible from its seed.
 
+use crate::emit::{first_ray, sample_light};
 use crate::walk::{Arrival, Start, Vertex, Visitor, walk};
 use footprint::Rgb;
 use footprint::bsdf::TransportMode;
@@ -34,7 +35,6 @@ use footprint::guide::particle_map::ParticleInput;
 use footprint::guide::sampler::{DirectionSample, GuidedSampler, SamplerState};
 use footprint::rng::Rng;
 use footprint::scene::Scene;
-use footprint::scene::geometry::offset_ray_origin;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
@@ -56,6 +56,10 @@ pub struct PassSettings {
 #[derive(Clone, Debug, Default)]
 pub struct PassStats {
     pub paths: usize,
+    /// Guided scattering events (at guiding surfaces) and, of those, BSDF fallbacks; zero
+    /// for an unguided pass.
+    pub guided_events: u64,
+    pub fallbacks: u64,
     /// Total emitted power (light pass) or importance (view pass: 1 per channel).
     pub emitted: Rgb,
     /// Weight leaving the scene (no hit) after bounce `k` (index 0: straight from the source).
@@ -94,6 +98,8 @@ struct ChunkOut {
     particles: Vec<ParticleInput>,
     emission_points: Vec<Seed>,
     escaped: Vec<Rgb>,
+    /// Scattering events at guiding surfaces and BSDF fallbacks among them.
+    guided: (u64, u64),
 }
 
 /// Stores particles along a walk.
@@ -135,15 +141,20 @@ impl Visitor for Storing<'_> {
     }
 }
 
-fn run_chunks(s: &PassSettings, path: impl Fn(usize, &mut ChunkOut) + Sync) -> ChunkOut {
+fn run_chunks<'a>(
+    s: &PassSettings,
+    path: impl Fn(usize, &mut ChunkOut, &mut SamplerState<'a>) + Sync,
+) -> ChunkOut {
     let chunks = s.paths.div_ceil(CHUNK);
     let outs: Vec<ChunkOut> = (0..chunks)
         .into_par_iter()
         .map(|c| {
             let mut out = ChunkOut::default();
+            let mut state = SamplerState::default();
             for i in c * CHUNK..((c + 1) * CHUNK).min(s.paths) {
-                path(i, &mut out);
+                path(i, &mut out, &mut state);
             }
+            out.guided = (state.prepared_events, state.fallbacks);
             out
         })
         .collect();
@@ -152,6 +163,8 @@ fn run_chunks(s: &PassSettings, path: impl Fn(usize, &mut ChunkOut) + Sync) -> C
         ..Default::default()
     };
     for o in outs {
+        all.guided.0 += o.guided.0;
+        all.guided.1 += o.guided.1;
         all.particles.extend_from_slice(&o.particles);
         all.emission_points.extend_from_slice(&o.emission_points);
         if all.escaped.len() < o.escaped.len() {
@@ -188,37 +201,30 @@ fn trace<'a>(
 pub fn light_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> PassOutput {
     let start = Instant::now();
     let inv_n = 1.0 / s.paths.max(1) as f32;
-    let all = run_chunks(s, |i, out| {
+    let all = run_chunks(s, |i, out, state| {
         let mut rng = Rng::new(s.seed, DOMAIN_LIGHT_PASS, i as u64);
-        let (li, pmf) = scene.light_distribution.sample(rng.uniform());
-        let light = &scene.lights[li];
-        let Some(em) = light.sample_le(rng.uniform2(), rng.uniform2()) else {
+        let Some(start) = sample_light(scene, &mut rng) else {
             return;
         };
-        let beta = em.le * (em.cos_light / (em.pdf_pos * em.pdf_dir * pmf) * inv_n);
-        if !beta.is_finite() || beta.max_element() <= 0.0 {
+        let Some((origin, dir, beta)) = first_ray(&start, sampler, state, &mut rng) else {
             return;
+        };
+        if let Some(n) = start.em.n {
+            out.emission_points.push(Seed {
+                position: start.em.p,
+                normal: n,
+            });
         }
-        let origin = match em.n {
-            Some(n) => {
-                out.emission_points.push(Seed {
-                    position: em.p,
-                    normal: n,
-                });
-                offset_ray_origin(em.p, n)
-            }
-            None => em.p,
-        };
+        let beta = beta * inv_n;
         let start = Start {
             origin,
-            dir: em.dir,
+            dir,
             beta,
             beta0: beta,
             mode: TransportMode::Importance,
             max_vertex_depth: s.max_depth,
         };
-        let mut state = SamplerState::default();
-        trace(scene, s, &start, sampler, &mut state, &mut rng, out);
+        trace(scene, s, &start, sampler, state, &mut rng, out);
     });
     let emitted = scene.lights.iter().map(|l| l.power_rgb()).sum();
     PassOutput {
@@ -226,6 +232,8 @@ pub fn light_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> P
         emission_points: all.emission_points,
         stats: PassStats {
             paths: s.paths,
+            guided_events: all.guided.0,
+            fallbacks: all.guided.1,
             emitted,
             escaped: all.escaped,
             time: start.elapsed(),
@@ -240,7 +248,7 @@ pub fn view_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> Pa
     let cam = &scene.camera;
     let inv_n = 1.0 / s.paths.max(1) as f32;
     let size = Vec2::new(cam.width as f32, cam.height as f32);
-    let all = run_chunks(s, |i, out| {
+    let all = run_chunks(s, |i, out, state| {
         let mut rng = Rng::new(s.seed, DOMAIN_VIEW_PASS, i as u64);
         let raster = rng.uniform2() * size;
         let start = Start {
@@ -251,14 +259,15 @@ pub fn view_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> Pa
             mode: TransportMode::Radiance,
             max_vertex_depth: s.max_depth,
         };
-        let mut state = SamplerState::default();
-        trace(scene, s, &start, sampler, &mut state, &mut rng, out);
+        trace(scene, s, &start, sampler, state, &mut rng, out);
     });
     PassOutput {
         particles: all.particles,
         emission_points: all.emission_points,
         stats: PassStats {
             paths: s.paths,
+            guided_events: all.guided.0,
+            fallbacks: all.guided.1,
             emitted: Rgb::ONE,
             escaped: all.escaped,
             time: start.elapsed(),

@@ -13,7 +13,8 @@ use crate::maps::{Guidance, MapTimings};
 use crate::method::Method;
 use crate::passes::PassSettings;
 use footprint::Rgb;
-use footprint::film::{Film, Image, SampleStats, SplatList};
+use footprint::film::filter::FilterKind;
+use footprint::film::{Film, FilmMode, Image, SampleStats, SplatList};
 use footprint::guide::sampler::SamplerState;
 use footprint::rng::Rng;
 use footprint::scene::Scene;
@@ -25,6 +26,8 @@ use std::time::{Duration, Instant};
 #[derive(Clone, Debug)]
 pub struct RenderOptions {
     pub method: Method,
+    /// How camera samples reach the film.
+    pub film: FilmMode,
     pub guide_params: GuideParams,
     /// Samples per pixel (camera paths) and light paths per pixel per pass.
     pub spp: u32,
@@ -39,6 +42,7 @@ impl Default for RenderOptions {
     fn default() -> Self {
         RenderOptions {
             method: Method::default(),
+            film: FilmMode::Splat,
             guide_params: GuideParams::default(),
             spp: 16,
             time: None,
@@ -55,6 +59,7 @@ impl RenderOptions {
         let s = &scene.settings;
         Ok(RenderOptions {
             method: Method::from_scene(scene)?,
+            film: FilmMode::Splat,
             guide_params: scene.guide.clone(),
             spp: s.spp,
             time: s.time,
@@ -163,35 +168,58 @@ pub fn render_with(
     let mut last_pass_end = start.elapsed().as_secs_f64();
     loop {
         if paths.camera {
-            let rows: Vec<(Vec<Rgb>, GuideCounts)> = (0..cam.height)
+            // Splatting and filter importance sampling coincide for the box filter; the
+            // box keeps the cheaper per-pixel accumulation.
+            let splat = opts.film != FilmMode::Fis && cam.filter.kind != FilterKind::Box;
+            let rows: Vec<(Vec<Rgb>, Vec<SplatList>, GuideCounts)> = (0..cam.height)
                 .into_par_iter()
                 .map_init(SamplerState::default, |state, y| {
                     let before = (state.prepared_events, state.fallbacks);
                     let mut row = vec![Rgb::ZERO; cam.width as usize * layers.len()];
+                    let mut splats =
+                        vec![SplatList::default(); if splat { layers.len() } else { 0 }];
                     for (x, out) in row.chunks_exact_mut(layers.len()).enumerate() {
                         let x = x as u32;
                         let index =
                             passes as u64 * npix as u64 + (y as u64 * cam.width as u64 + x as u64);
                         let mut rng = Rng::new(opts.seed, DOMAIN_CAMERA, index);
-                        let raster =
-                            cam.filter
-                                .sample_raster(x, y, cam.width, cam.height, rng.uniform2());
+                        let u = rng.uniform2();
+                        let raster = if splat {
+                            glam::Vec2::new(x as f32, y as f32) + u
+                        } else {
+                            cam.filter.sample_raster(x, y, cam.width, cam.height, u)
+                        };
                         integrator.camera_path(&ctx, raster, &mut rng, state, out);
+                        for (l, s) in splats.iter_mut().enumerate() {
+                            let (f, w, h) = (&cam.filter, cam.width, cam.height);
+                            if opts.film == FilmMode::Weighted {
+                                s.splat_weighted(f, w, h, raster, out[l]);
+                            } else {
+                                s.splat(f, w, h, raster, out[l]);
+                            }
+                        }
                     }
                     let counts = GuideCounts {
                         prepared: state.prepared_events - before.0,
                         fallbacks: state.fallbacks - before.1,
                     };
-                    (row, counts)
+                    (row, splats, counts)
                 })
                 .collect();
-            // A layer that only light paths write gets zeros here.
             for (l, film) in films.iter_mut().enumerate() {
-                film.add_per_pixel(|x, y| rows[y as usize].0[x as usize * layers.len() + l]);
+                if splat {
+                    // Rows in order: the sums do not depend on the thread count.
+                    for r in &rows {
+                        film.add_splats(&r.1[l]);
+                    }
+                } else {
+                    // A layer that only light paths write gets zeros here.
+                    film.add_per_pixel(|x, y| rows[y as usize].0[x as usize * layers.len() + l]);
+                }
             }
             for r in &rows {
-                camera_guide.prepared += r.1.prepared;
-                camera_guide.fallbacks += r.1.fallbacks;
+                camera_guide.prepared += r.2.prepared;
+                camera_guide.fallbacks += r.2.fallbacks;
             }
         }
         if paths.light {

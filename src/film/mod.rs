@@ -78,12 +78,35 @@ impl SampleStats {
     }
 }
 
-/// An accumulation buffer in f64 (sums), turned into an [`Image`] by dividing by a count.
+/// How camera samples reach the film (both converge to the filter-weighted pixel values of
+/// [`filter`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum FilmMode {
+    /// Splat every sample into all pixels under the filter with the light tracer's weights
+    /// `f(x - c_p) / ∫ f(t - c_p) dt` and divide by the sample count: each pixel averages
+    /// several samples, and the estimate stays unbiased (camera samples are uniform over the
+    /// image, so the normalisation is known).
+    Splat,
+    /// Splat every sample into all pixels under the filter and divide by the summed filter
+    /// weights (Mitsuba 3, pbrt-v3): a ratio estimator, biased by O(1/samples) where the
+    /// image varies inside the filter, exact for a constant image.
+    Weighted,
+    /// Filter importance sampling (pbrt-v4): one sample, one pixel, weight 1; pixels stay
+    /// uncorrelated (what denoisers want).
+    Fis,
+}
+
+/// An accumulation buffer in f64, turned into an [`Image`]: plain sums divided by a count
+/// (filter-importance-sampled camera samples, light-path splats), plus filter-weighted
+/// sums divided by their summed weights (splatted camera samples).
 #[derive(Clone, Debug)]
 pub struct Film {
     pub width: u32,
     pub height: u32,
     sum: Vec<[f64; 3]>,
+    /// Filter-weighted sums and the summed weights (empty until a weighted splat arrives).
+    weighted: Vec<[f64; 4]>,
     pub stats: SampleStats,
 }
 
@@ -93,6 +116,7 @@ impl Film {
             width,
             height,
             sum: vec![[0.0; 3]; width as usize * height as usize],
+            weighted: Vec::new(),
             stats: SampleStats::default(),
         }
     }
@@ -110,6 +134,16 @@ impl Film {
     pub fn add_splats(&mut self, splats: &SplatList) {
         for &(i, v) in &splats.entries {
             self.add_index(i as usize, v);
+        }
+        if !splats.weighted.is_empty() && self.weighted.is_empty() {
+            self.weighted = vec![[0.0; 4]; self.sum.len()];
+        }
+        for &(i, v, w) in &splats.weighted {
+            let s = &mut self.weighted[i as usize];
+            s[0] += (v.x * w) as f64;
+            s[1] += (v.y * w) as f64;
+            s[2] += (v.z * w) as f64;
+            s[3] += w as f64;
         }
         self.stats.merge(&splats.stats);
     }
@@ -143,19 +177,27 @@ impl Film {
         }
     }
 
-    /// Sums scaled by `scale`.
+    /// Plain sums scaled by `scale`, plus the weighted sums over their weights.
     pub fn to_image(&self, scale: f64) -> Image {
+        let weighted = |i: usize| -> [f64; 3] {
+            match self.weighted.get(i) {
+                Some(w) if w[3] > 0.0 => [w[0] / w[3], w[1] / w[3], w[2] / w[3]],
+                _ => [0.0; 3],
+            }
+        };
         Image {
             width: self.width,
             height: self.height,
             pixels: self
                 .sum
                 .iter()
-                .map(|s| {
+                .enumerate()
+                .map(|(i, s)| {
+                    let w = weighted(i);
                     Rgb::new(
-                        (s[0] * scale) as f32,
-                        (s[1] * scale) as f32,
-                        (s[2] * scale) as f32,
+                        (s[0] * scale + w[0]) as f32,
+                        (s[1] * scale + w[1]) as f32,
+                        (s[2] * scale + w[2]) as f32,
                     )
                 })
                 .collect(),
@@ -168,6 +210,8 @@ impl Film {
 #[derive(Clone, Debug, Default)]
 pub struct SplatList {
     entries: Vec<(u32, Rgb)>,
+    /// Filter-weighted camera samples: pixel, value, filter weight.
+    weighted: Vec<(u32, Rgb, f32)>,
     pub stats: SampleStats,
 }
 
@@ -184,11 +228,28 @@ impl SplatList {
         filter.splat_weights(raster, width, height, |i, w| entries.push((i, v * w)));
     }
 
+    /// Adds a camera sample `v` taken at raster position `raster` to every pixel the filter
+    /// covers there, with the filter's weight, for the weighted mean `Σ w v / Σ w` (the
+    /// weights are added even for a zero value; invalid values are counted and dropped).
+    #[inline]
+    pub fn splat_weighted(
+        &mut self,
+        filter: &PixelFilter,
+        width: u32,
+        height: u32,
+        raster: Vec2,
+        v: Rgb,
+    ) {
+        let Some(v) = self.stats.check(v) else { return };
+        let weighted = &mut self.weighted;
+        filter.splat_weights(raster, width, height, |i, w| weighted.push((i, v, w)));
+    }
+
     pub fn len(&self) -> usize {
-        self.entries.len()
+        self.entries.len() + self.weighted.len()
     }
 
     pub fn is_empty(&self) -> bool {
-        self.entries.is_empty()
+        self.entries.is_empty() && self.weighted.is_empty()
     }
 }

@@ -2,9 +2,8 @@
 //! lights (chosen in proportion to power), every scattering direction comes from the
 //! direction sampler (BSDF, grid or footprint over the importance map), and every
 //! non-specular vertex, the light vertex included, is connected to the pinhole camera and
-//! splatted onto the film. At area lights the emission direction is guided too: the emitted
-//! cosine lobe plays the BSDF's part, and the importons that reached the light's surface
-//! (paper §2.1) give the footprints.
+//! splatted onto the film. At area lights the emission direction is guided too
+//! ([`crate::emit`]).
 //!
 //! Normalisation. With `N = n P` light paths (`n` passes of one path per each of the `P`
 //! pixels), a connection from vertex `x` with throughput `β` (flux per unit area and solid
@@ -26,16 +25,14 @@
 //! from the `n`-th hit closes a path of `n + 1` segments.
 
 use super::{Context, Integrator, Paths};
+use crate::emit::{first_ray, sample_light};
 use crate::mis::LightMis;
 use crate::walk::{Arrival, Start, Vertex, Visitor, walk};
-use footprint::Rgb;
-use footprint::bsdf::{Bsdf, Lobes, TransportMode};
+use footprint::bsdf::TransportMode;
 use footprint::film::SplatList;
-use footprint::guide::sampler::{DirectionSample, SamplerState, ScatterPoint};
-use footprint::math::PI;
+use footprint::guide::sampler::{DirectionSample, SamplerState};
 use footprint::rng::Rng;
 use footprint::scene::Scene;
-use footprint::scene::geometry::offset_ray_origin;
 use footprint::scene::light::Light;
 use glam::Vec3;
 
@@ -118,11 +115,11 @@ pub fn trace<'a, W: LightShare>(
     let scene = ctx.scene;
     let cam = &scene.camera;
     let (w, h) = (cam.width, cam.height);
-    let (li, pmf) = scene.light_distribution.sample(rng.uniform());
-    let light = &scene.lights[li];
-    let Some(em) = light.sample_le(rng.uniform2(), rng.uniform2()) else {
+    let Some(start) = sample_light(scene, rng) else {
         return;
     };
+    let (li, pmf, light) = (start.index, start.pmf, start.light);
+    let em = &start.em;
     let mut share = share.filter(|_| !light.is_environment());
     let weights = weights(li as u32, em.p, em.n);
 
@@ -150,37 +147,11 @@ pub fn trace<'a, W: LightShare>(
     }
 
     // ---- Emission direction, guided at area lights ----
-    let (dir, beta) = match em.n {
-        Some(n) => {
-            // The emitted cosine lobe as a Lambertian "BSDF" of albedo 1 about the normal.
-            let lobe = Bsdf::new(Lobes::Diffuse { kd: Rgb::ONE }, n, n);
-            let at = ScatterPoint {
-                p: em.p,
-                bsdf: &lobe,
-                wo: n,
-                mode: TransportMode::Importance,
-                throughput: em.le,
-            };
-            ctx.light_sampler.prepare(&at, state);
-            let Some(s) = ctx.light_sampler.sample(&at, state, rng) else {
-                return;
-            };
-            // Le cos / (pdf_pos pdf_w pmf) = Le π (f cos / pdf_w) / (pdf_pos pmf) with f = 1/π.
-            (s.wi, em.le * s.weight * (PI / (em.pdf_pos * pmf)))
-        }
-        None => (
-            em.dir,
-            em.le * (em.cos_light / (em.pdf_pos * em.pdf_dir * pmf)),
-        ),
-    };
-    if !beta.is_finite() || beta.max_element() <= 0.0 {
+    let Some((origin, dir, beta)) = first_ray(&start, &ctx.light_sampler, state, rng) else {
         return;
-    }
+    };
     let start = Start {
-        origin: match em.n {
-            Some(n) => offset_ray_origin(em.p, n),
-            None => em.p,
-        },
+        origin,
         dir,
         beta,
         beta0: beta,
