@@ -43,6 +43,7 @@ fn opts(method: &str, spp: u32, max_depth: u32, seed: u64) -> RenderOptions {
         time: None,
         max_depth,
         seed,
+        ..Default::default()
     }
 }
 

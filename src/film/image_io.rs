@@ -1,43 +1,14 @@
 //! Writing images: OpenEXR (linear float RGB, one layer per estimate, settings in the
-//! header) and a PNG preview. Both are written to a temporary file in the target folder and
-//! renamed over the target, so a failed or interrupted run never truncates a good image.
+//! header) and a PNG preview. Both are written whole or not at all ([`crate::atomic_file`]),
+//! so a failed or interrupted run never truncates a good image.
 //!
 //! PNG tone map: `srgb(clamp(2^exposure · rgb, 0, 1))`, with the sRGB transfer function
 //! (IEC 61966-2-1); exposure 0 by default. No other curve is applied.
 
-use crate::error::{Error, Result};
+use crate::atomic_file::atomic_write;
+use crate::error::Result;
 use crate::film::Image;
-use std::path::{Path, PathBuf};
-
-fn tmp_path(path: &Path) -> PathBuf {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().to_string())
-        .unwrap_or_default();
-    path.with_file_name(format!(".{name}.tmp-{}", std::process::id()))
-}
-
-/// Runs `write` against a temporary file, then renames it over `path`.
-fn atomic_write(
-    path: &Path,
-    write: impl FnOnce(&Path) -> std::result::Result<(), String>,
-) -> Result<()> {
-    let tmp = tmp_path(path);
-    if let Err(message) = write(&tmp) {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(Error::Write {
-            path: path.to_path_buf(),
-            message,
-        });
-    }
-    std::fs::rename(&tmp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        Error::Write {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        }
-    })
-}
+use std::path::Path;
 
 /// Writes an EXR with one RGB layer per `(name, image)` and text attributes in the header.
 pub fn write_exr(
@@ -166,4 +137,73 @@ pub fn read_exr_text_attribute(path: &Path, key: &str) -> Option<String> {
         AttributeValue::Text(t) => Some(t.to_string()),
         _ => None,
     }
+}
+
+/// An EXR as [`write_exr`] writes it: every layer's RGB image by name, and the header's text
+/// attributes, sorted by key.
+pub struct ExrLayers {
+    pub layers: Vec<(String, Image)>,
+    pub attributes: Vec<(String, String)>,
+}
+
+/// Reads every RGB layer and the text attributes of an EXR. A layer without R, G and B
+/// channels, or of another size than the first, is an error naming the file.
+pub fn read_exr_layers(path: &Path) -> crate::error::Result<ExrLayers> {
+    use exr::meta::attribute::AttributeValue;
+    use exr::prelude::*;
+    let fail = |m: String| crate::error::Error::Other(format!("{}: {m}", path.display()));
+    let img = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .all_layers()
+        .all_attributes()
+        .from_file(path)
+        .map_err(|e| fail(format!("not a readable EXR ({e})")))?;
+    let mut attributes: Vec<(String, String)> = Vec::new();
+    let mut add = |other: &std::collections::HashMap<Text, AttributeValue>| {
+        for (k, v) in other {
+            if let AttributeValue::Text(t) = v {
+                let k = k.to_string();
+                if !attributes.iter().any(|(a, _)| *a == k) {
+                    attributes.push((k, t.to_string()));
+                }
+            }
+        }
+    };
+    add(&img.attributes.other);
+    let mut layers = Vec::new();
+    for layer in &img.layer_data {
+        add(&layer.attributes.other);
+        let name = layer
+            .attributes
+            .layer_name
+            .as_ref()
+            .map(|n| n.to_string())
+            .unwrap_or_default();
+        let (w, h) = (layer.size.width(), layer.size.height());
+        let channel = |c: &str| -> crate::error::Result<Vec<f32>> {
+            layer
+                .channel_data
+                .list
+                .iter()
+                .find(|ch| ch.name.to_string() == c)
+                .map(|ch| ch.sample_data.values_as_f32().collect())
+                .ok_or_else(|| fail(format!("layer '{name}' has no {c} channel")))
+        };
+        let (r, g, b) = (channel("R")?, channel("G")?, channel("B")?);
+        let pixels = (0..w * h)
+            .map(|i| glam::Vec3::new(r[i], g[i], b[i]))
+            .collect();
+        layers.push((
+            name,
+            crate::film::Image {
+                width: w as u32,
+                height: h as u32,
+                pixels,
+            },
+        ));
+    }
+    attributes.sort();
+    Ok(ExrLayers { layers, attributes })
 }
