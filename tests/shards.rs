@@ -12,14 +12,7 @@ use std::process::{Command, Output};
 
 /// A fresh folder with a copy of cornell (so that a changed copy is "another scene").
 fn workdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("footprint-shards-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    let src = common::scenes_dir().join("cornell");
-    for f in ["cornell.toml", "cornell.obj", "cornell.mtl"] {
-        std::fs::copy(src.join(f), d.join(f)).unwrap();
-    }
-    d
+    common::cornell_copy(&format!("shards-{name}"))
 }
 
 fn footprint(args: &[&str]) -> Output {
@@ -115,25 +108,6 @@ fn attr<'a>(e: &'a ExrLayers, key: &str) -> &'a str {
         .unwrap_or_else(|| panic!("no {key}"))
 }
 
-/// Every layer of `a` equals `b`'s to float rounding (a few ulp of f32).
-fn assert_same_image(a: &Path, b: &Path, what: &str) {
-    let (a, b) = (read_exr_layers(a).unwrap(), read_exr_layers(b).unwrap());
-    let names = |e: &ExrLayers| e.layers.iter().map(|l| l.0.clone()).collect::<Vec<_>>();
-    assert_eq!(names(&a), names(&b), "{what}: layers");
-    let mut worst = 0.0f32;
-    for ((name, x), (_, y)) in a.layers.iter().zip(&b.layers) {
-        assert_eq!(x.pixels.len(), y.pixels.len());
-        assert!(x.mean().max_element() > 0.0, "{what}: {name} is black");
-        for (p, q) in x.pixels.iter().zip(&y.pixels) {
-            for c in 0..3 {
-                let d = (p[c] - q[c]).abs() / p[c].abs().max(q[c].abs()).max(1e-30);
-                worst = worst.max(d);
-            }
-        }
-    }
-    assert!(worst < 1e-6, "{what}: relative difference {worst:e}");
-}
-
 #[test]
 fn four_shards_merged_equal_one_run() {
     let d = workdir("four");
@@ -169,7 +143,7 @@ fn four_shards_merged_equal_one_run() {
         // In any order.
         args.extend(shards.iter().rev().map(|p| s(p)));
         ok(&args);
-        assert_same_image(&merged, &one, method);
+        common::assert_same_exr(&merged, &one, method);
         let m = read_exr_layers(&merged).unwrap();
         assert_eq!(attr(&m, "footprint/spp"), "6");
         assert_eq!(attr(&m, "footprint/shard"), "0/1");
@@ -222,7 +196,7 @@ fn saved_maps_give_the_image_of_a_run_that_built_them() {
     let mut args = vec!["merge", s(&merged)];
     args.extend(shards.iter().map(|p| s(p)));
     ok(&args);
-    assert_same_image(
+    common::assert_same_exr(
         &merged,
         &d.join("combined-footprint-built.exr"),
         "--maps shards",
@@ -443,5 +417,5 @@ fn a_killed_shard_leaves_no_image_and_rerunning_it_completes_the_merge() {
     let mut args = base(&scene, "pt-bsdf");
     args.extend(["--out", s(&one)]);
     ok(&args);
-    assert_same_image(&merged, &one, "rerun shard");
+    common::assert_same_exr(&merged, &one, "rerun shard");
 }
