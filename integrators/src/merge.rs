@@ -13,7 +13,7 @@ use crate::render::RenderOptions;
 use crate::shard::PassSelection;
 use anyhow::{Context, Result, bail};
 use footprint::film::Image;
-use footprint::film::image_io::{ExrLayers, read_exr_layers, write_exr};
+use footprint::film::image_io::{ExrHeader, read_exr_header, read_exr_layers, write_exr};
 use footprint::scene::Scene;
 use std::path::{Path, PathBuf};
 
@@ -63,10 +63,10 @@ pub fn settings_key(opts: &RenderOptions, scene: &Scene) -> String {
     )
 }
 
-/// One input of a merge.
+/// One input of a merge, its header read (its pixels are read one shard at a time).
 struct ShardImage {
     path: PathBuf,
-    exr: ExrLayers,
+    exr: ExrHeader,
     shard: PassSelection,
     spp: u32,
     spp_total: u32,
@@ -82,7 +82,7 @@ impl ShardImage {
     }
 
     fn read(path: &Path) -> Result<Self> {
-        let exr = read_exr_layers(path)?;
+        let exr = read_exr_header(path)?;
         let mut s = ShardImage {
             path: path.to_path_buf(),
             exr,
@@ -171,21 +171,11 @@ pub fn merge(out: &Path, inputs: &[PathBuf]) -> Result<Merged> {
                 a.shard
             );
         }
-        let names = |x: &ShardImage| {
-            x.exr
-                .layers
-                .iter()
-                .map(|(l, _)| l.clone())
-                .collect::<Vec<_>>()
-        };
-        let size = |x: &ShardImage| (x.exr.layers[0].1.width, x.exr.layers[0].1.height);
-        if names(s) != names(a) || size(s) != size(a) {
+        if s.exr.layers != a.exr.layers {
             bail!(
-                "{nb} has layers {:?} at {:?}, {na} {:?} at {:?}",
-                names(s),
-                size(s),
-                names(a),
-                size(a)
+                "{nb} has layers {:?}, {na} {:?} (name, width, height)",
+                s.exr.layers,
+                a.exr.layers
             );
         }
     }
@@ -224,39 +214,63 @@ pub fn merge(out: &Path, inputs: &[PathBuf]) -> Result<Merged> {
             if missing.len() > 1 { "them" } else { "it" }
         );
     }
-    // Weighted by passes, in shard order, in f64.
+    // Weighted by passes, in shard order, in f64; one shard's pixels in memory at a time.
     let total: u32 = shards.iter().map(|s| s.spp).sum();
     let ordered: Vec<&ShardImage> = by_index.into_iter().flatten().collect();
     let base = ordered[0];
-    let mut layers = Vec::new();
-    for (l, (name, img0)) in base.exr.layers.iter().enumerate() {
-        let mut sum = vec![[0.0f64; 3]; img0.pixels.len()];
-        for s in &ordered {
-            let w = s.spp as f64;
-            for (acc, p) in sum.iter_mut().zip(&s.exr.layers[l].1.pixels) {
+    let mut sums: Vec<Vec<[f64; 3]>> = base
+        .exr
+        .layers
+        .iter()
+        .map(|(_, w, h)| vec![[0.0f64; 3]; *w as usize * *h as usize])
+        .collect();
+    for s in &ordered {
+        let img = read_exr_layers(&s.path)?;
+        let found: Vec<(String, u32, u32)> = img
+            .layers
+            .iter()
+            .map(|(n, i)| (n.clone(), i.width, i.height))
+            .collect();
+        if found != base.exr.layers {
+            bail!(
+                "{}: its layers are not what its header says",
+                s.path.display()
+            );
+        }
+        let w = s.spp as f64;
+        for (sum, (_, layer)) in sums.iter_mut().zip(&img.layers) {
+            for (acc, p) in sum.iter_mut().zip(&layer.pixels) {
                 for c in 0..3 {
                     acc[c] += p[c] as f64 * w;
                 }
             }
         }
-        let inv = 1.0 / total as f64;
-        let pixels = sum
-            .iter()
-            .map(|a| {
-                footprint::Rgb::new(
-                    (a[0] * inv) as f32,
-                    (a[1] * inv) as f32,
-                    (a[2] * inv) as f32,
-                )
-            })
-            .collect();
-        let img = Image {
-            width: img0.width,
-            height: img0.height,
-            pixels,
-        };
-        layers.push((name.clone(), img));
     }
+    let inv = 1.0 / total as f64;
+    let mut layers: Vec<(String, Image)> = base
+        .exr
+        .layers
+        .iter()
+        .zip(&sums)
+        .map(|((name, width, height), sum)| {
+            let pixels = sum
+                .iter()
+                .map(|a| {
+                    footprint::Rgb::new(
+                        (a[0] * inv) as f32,
+                        (a[1] * inv) as f32,
+                        (a[2] * inv) as f32,
+                    )
+                })
+                .collect();
+            let img = Image {
+                width: *width,
+                height: *height,
+                pixels,
+            };
+            (name.clone(), img)
+        })
+        .collect();
     let render_time: f64 = ordered
         .iter()
         .filter_map(|s| s.attr(RENDER_TIME)?.parse::<f64>().ok())

@@ -139,6 +139,68 @@ pub fn read_exr_text_attribute(path: &Path, key: &str) -> Option<String> {
     }
 }
 
+/// The header of an EXR as [`write_exr`] writes it: every layer's name and size, and the
+/// text attributes, sorted by key.
+pub struct ExrHeader {
+    pub layers: Vec<(String, u32, u32)>,
+    pub attributes: Vec<(String, String)>,
+}
+
+/// The text attributes among `maps`, first occurrence of a key kept, sorted by key.
+fn text_attributes<'a>(
+    maps: impl Iterator<
+        Item = &'a std::collections::HashMap<
+            exr::meta::attribute::Text,
+            exr::meta::attribute::AttributeValue,
+        >,
+    >,
+) -> Vec<(String, String)> {
+    use exr::meta::attribute::AttributeValue;
+    let mut out: Vec<(String, String)> = Vec::new();
+    for m in maps {
+        for (k, v) in m {
+            if let AttributeValue::Text(t) = v {
+                let k = k.to_string();
+                if !out.iter().any(|(a, _)| *a == k) {
+                    out.push((k, t.to_string()));
+                }
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// Reads the header of an EXR (no pixels): cheap, for checks before reading many files.
+pub fn read_exr_header(path: &Path) -> crate::error::Result<ExrHeader> {
+    let fail = |m: String| crate::error::Error::Other(format!("{}: {m}", path.display()));
+    let meta = exr::meta::MetaData::read_from_file(path, false)
+        .map_err(|e| fail(format!("not a readable EXR ({e})")))?;
+    let layers = meta
+        .headers
+        .iter()
+        .map(|h| {
+            let name = h
+                .own_attributes
+                .layer_name
+                .as_ref()
+                .map(|n| n.to_string())
+                .unwrap_or_default();
+            (
+                name,
+                h.layer_size.width() as u32,
+                h.layer_size.height() as u32,
+            )
+        })
+        .collect();
+    let attributes = text_attributes(
+        meta.headers
+            .iter()
+            .flat_map(|h| [&h.shared_attributes.other, &h.own_attributes.other]),
+    );
+    Ok(ExrHeader { layers, attributes })
+}
+
 /// An EXR as [`write_exr`] writes it: every layer's RGB image by name, and the header's text
 /// attributes, sorted by key.
 pub struct ExrLayers {
@@ -147,9 +209,8 @@ pub struct ExrLayers {
 }
 
 /// Reads every RGB layer and the text attributes of an EXR. A layer without R, G and B
-/// channels, or of another size than the first, is an error naming the file.
+/// channels is an error naming the file.
 pub fn read_exr_layers(path: &Path) -> crate::error::Result<ExrLayers> {
-    use exr::meta::attribute::AttributeValue;
     use exr::prelude::*;
     let fail = |m: String| crate::error::Error::Other(format!("{}: {m}", path.display()));
     let img = read()
@@ -160,21 +221,12 @@ pub fn read_exr_layers(path: &Path) -> crate::error::Result<ExrLayers> {
         .all_attributes()
         .from_file(path)
         .map_err(|e| fail(format!("not a readable EXR ({e})")))?;
-    let mut attributes: Vec<(String, String)> = Vec::new();
-    let mut add = |other: &std::collections::HashMap<Text, AttributeValue>| {
-        for (k, v) in other {
-            if let AttributeValue::Text(t) = v {
-                let k = k.to_string();
-                if !attributes.iter().any(|(a, _)| *a == k) {
-                    attributes.push((k, t.to_string()));
-                }
-            }
-        }
-    };
-    add(&img.attributes.other);
+    let attributes = text_attributes(
+        std::iter::once(&img.attributes.other)
+            .chain(img.layer_data.iter().map(|l| &l.attributes.other)),
+    );
     let mut layers = Vec::new();
     for layer in &img.layer_data {
-        add(&layer.attributes.other);
         let name = layer
             .attributes
             .layer_name
@@ -204,6 +256,5 @@ pub fn read_exr_layers(path: &Path) -> crate::error::Result<ExrLayers> {
             },
         ));
     }
-    attributes.sort();
     Ok(ExrLayers { layers, attributes })
 }
