@@ -3,8 +3,8 @@
 //! The file holds what is expensive, the passes' output ([`Passes`]: every particle with
 //! its record, the emission points, the pass statistics), not the kd-trees and guide caches:
 //! those are rebuilt on load by [`crate::maps::Guidance::from_passes`], deterministically, in
-//! about a second, so a render with loaded maps is the same image as one that ran the
-//! passes itself.
+//! a second or two (the cache builds dominate), so a render with loaded maps is the same
+//! image as one that ran the passes itself.
 //!
 //! Format version 1, little-endian:
 //!

@@ -6,7 +6,8 @@
 //! Reproducibility: camera path `i` of pass `k` and light path `i` of pass `k` each draw from
 //! their own random stream `(seed, k, i)`; light-path splats are applied chunk by chunk in
 //! chunk order. The image for a given seed and sample count is therefore the same whatever
-//! the number of threads.
+//! the number of threads. A shard ([`RenderOptions::passes`], [`crate::shard`]) draws only
+//! the passes `k` it owns, with the same streams, so shards add up to one run.
 
 use crate::integrator::Context;
 use crate::maps::{Guidance, MapTimings};
