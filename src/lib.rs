@@ -12,11 +12,12 @@
 //! * [`film`]: the film, pixel filters and image files;
 //! * [`settings`]: what a scene file's `[render]`, `[maps]` and `[guide]` tables hold;
 //! * foundations: [`math`], [`sampling`] (warps and discrete distributions), [`rng`],
-//!   [`heap`] (a counting allocator), [`error`].
+//!   [`heap`] (a counting allocator), [`error`], [`atomic_file`] (whole-or-nothing writes).
 //!
 //! The integrators and the command line live in the `footprint-integrators` crate
 //! (`integrators/`).
 
+pub mod atomic_file;
 pub mod bsdf;
 pub mod error;
 pub mod film;

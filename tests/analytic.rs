@@ -114,6 +114,7 @@ fn uniform_environment_lights_a_convex_sphere_exactly() {
                 time: None,
                 max_depth: 6,
                 seed: 500 + r as u64,
+                passes: Default::default(),
                 // Every photon here carries direct light (depth 1): keep them, so that guiding
                 // happens.
                 guide_params: footprint::settings::GuideParams {

@@ -50,14 +50,7 @@ fn convergence_slope_and_time_to_error() {
 
 /// A copy of the cornell scene in a fresh folder (the cache must not land in the repository).
 fn cornell_copy(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("footprint-compare-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    let src = common::scenes_dir().join("cornell");
-    for f in ["cornell.toml", "cornell.obj", "cornell.mtl"] {
-        std::fs::copy(src.join(f), d.join(f)).unwrap();
-    }
-    d.join("cornell.toml")
+    common::cornell_copy(&format!("compare-{name}")).join("cornell.toml")
 }
 
 #[test]

@@ -102,35 +102,7 @@ pub struct Row {
 /// A short text that identifies what a reference was rendered from: the scene files'
 /// contents, the resolution, depth and reference settings.
 pub fn reference_key(scene_path: &Path, scene: &Scene, spp: u32, max_depth: u32) -> Result<String> {
-    let mut h = blake3::Hasher::new();
-    let text = std::fs::read(scene_path)
-        .with_context(|| format!("cannot read {}", scene_path.display()))?;
-    h.update(&text);
-    // Every file the scene names (meshes, their materials, textures), by content: any quoted
-    // string (double or single quotes) that is a file beside the scene, in TOML
-    // (`file = "x.obj"`) as in Mitsuba XML (`value="models/x.obj"`).
-    let dir = scene_path.parent().unwrap_or(Path::new("."));
-    let text = String::from_utf8_lossy(&text).to_string();
-    let quoted = ['"', '\'']
-        .into_iter()
-        .flat_map(|q| text.split(q).skip(1).step_by(2));
-    for quoted in quoted {
-        if quoted.is_empty() || quoted.len() > 400 || quoted.contains('\n') {
-            continue;
-        }
-        let p = dir.join(quoted);
-        if p.is_file() {
-            if let Ok(bytes) = std::fs::read(&p) {
-                h.update(&bytes);
-            }
-            if let Ok(mtl) = std::fs::read(p.with_extension("mtl")) {
-                h.update(&mtl);
-            }
-        }
-    }
-    // Parameters given on the command line (`-D`).
-    h.update(scene.source_params.as_bytes());
-    let hash = h.finalize().to_hex();
+    let hash = crate::scene_hash::scene_content_hash(scene_path, scene)?;
     Ok(format!(
         "scene={} res={}x{} spp={spp} max_depth={max_depth} method=combined-bsdf v{}",
         &hash[..16],

@@ -8,19 +8,28 @@
 //! * [`mis`]: the combined image's weights, kept as running quantities per subpath;
 //! * [`passes`]: the light pass (photon map) and the view pass (importance map);
 //! * [`maps`]: building the maps and guide caches a method needs, and pictures of the maps;
+//! * [`maps_file`]: saved maps (the passes' particles), versioned and checksummed;
+//! * [`merge`]: the image of one run from its shards' images;
 //! * [`method`]: a method (integrator x guide), resolved from names in one place;
 //! * [`render`]: passes, threads, time budgets, progress, and the run summary;
+//! * [`scene_hash`]: the scene's content hash (references, saved maps, shards);
+//! * [`shard`]: which passes a render draws (shard `i` of `N`);
 //! * [`compare`]: equal-time comparisons, error against time, parameter sweeps.
 
 pub mod compare;
 pub mod emit;
 pub mod integrator;
 pub mod maps;
+pub mod maps_file;
+pub mod merge;
 pub mod method;
 pub mod mis;
 pub mod passes;
 pub mod render;
+pub mod scene_hash;
+pub mod shard;
 pub mod walk;
 
 pub use method::Method;
-pub use render::{RenderOptions, RenderResult, render, render_with};
+pub use render::{RenderOptions, RenderResult, render, render_guided, render_with};
+pub use shard::PassSelection;

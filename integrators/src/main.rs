@@ -8,6 +8,7 @@ use footprint::guide::GUIDES;
 use footprint::scene::Scene;
 use footprint::settings::RadiusRule;
 use footprint_integrators::integrator::INTEGRATORS;
+use footprint_integrators::scene_hash::scene_content_hash;
 use footprint_integrators::{Method, RenderOptions};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
@@ -181,6 +182,15 @@ enum Command {
         /// (Mitsuba, pbrt-v3) or filter importance sampling (pbrt-v4; uncorrelated pixels)
         #[arg(long, value_enum, default_value_t = footprint::film::FilmMode::Splat)]
         film: footprint::film::FilmMode,
+        /// Render only shard i of N (zero-based): the passes k < spp with k mod N = i, so that
+        /// N shards with the same --spp (the total) and seed, put together by `footprint
+        /// merge`, are the image of one run. Needs --spp, not --time
+        #[arg(long, value_name = "i/N", value_parser = footprint_integrators::PassSelection::parse)]
+        shard: Option<footprint_integrators::PassSelection>,
+        /// Load the particle maps' passes from this file (written by `footprint maps --save`)
+        /// instead of running them; refused if made for another scene or other settings
+        #[arg(long = "maps", value_name = "MAPS.fpm")]
+        maps_file: Option<PathBuf>,
         #[command(flatten)]
         params: GuideParamArgs,
         #[command(flatten)]
@@ -188,13 +198,34 @@ enum Command {
         #[command(flatten)]
         import: ImportArgs,
     },
+    /// Put the shards of one render (`render --shard i/N`) together: every layer, weighted
+    /// by its sample count; refuses shards of other scenes, settings or seeds, a shard given
+    /// twice, and missing ones
+    Merge {
+        /// Output EXR (the PNG preview is written beside it)
+        out: PathBuf,
+        /// The shards' EXR files, all N of them, in any order
+        #[arg(required = true)]
+        shards: Vec<PathBuf>,
+        /// Exposure of the PNG preview in stops
+        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+        exposure: f32,
+    },
     /// Build the photon map and the importance map and write pictures of them seen from the camera
     Maps {
         /// Scene file: footprint TOML (.toml) or Mitsuba 3 XML (.xml)
         scene: PathBuf,
         /// Folder for photons.png and importons.png (created if missing)
-        #[arg(long, short)]
-        out: PathBuf,
+        #[arg(long, short, required_unless_present = "save")]
+        out: Option<PathBuf>,
+        /// Save both passes' particles (what the maps and guide caches are built from) to this
+        /// file, for `render --maps`; it records the scene's content hash and the map settings
+        #[arg(long, value_name = "MAPS.fpm")]
+        save: Option<PathBuf>,
+        /// Image size WIDTHxHEIGHT, replacing the scene's (the view pass depends on it: use
+        /// the render's)
+        #[arg(long, value_parser = parse_resolution)]
+        resolution: Option<(u32, u32)>,
         #[command(flatten)]
         maps: MapArgs,
         #[command(flatten)]
@@ -450,6 +481,8 @@ fn run(cli: Cli) -> Result<()> {
             exposure,
             resolution,
             threads,
+            shard,
+            maps_file,
             guide,
             film,
             params,
@@ -461,6 +494,11 @@ fn run(cli: Cli) -> Result<()> {
                 if !(t.is_finite() && t > 0.0) {
                     bail!("--time must be a positive number of seconds, got {t}");
                 }
+            }
+            if shard.is_some() && time.is_some() {
+                bail!(
+                    "--shard needs --spp, not --time: with a time budget every machine renders as many passes as its speed allows, so the shards would not add up to the samples of one run; give every shard the same --spp (the total)"
+                );
             }
             if !exposure.is_finite() {
                 bail!("--exposure must be finite");
@@ -490,6 +528,21 @@ fn run(cli: Cli) -> Result<()> {
             if let Some(s) = seed {
                 opts.seed = s;
             }
+            if let Some(sh) = shard {
+                if opts.time.is_some() {
+                    bail!(
+                        "--shard needs a sample count, but the scene file sets render.time: give --spp (the total over all shards)"
+                    );
+                }
+                if sh.passes_of(opts.spp) == 0 {
+                    bail!(
+                        "--shard {sh}: {} spp cannot be split into {} shards (each needs a pass)",
+                        opts.spp,
+                        sh.count
+                    );
+                }
+                opts.passes = sh;
+            }
             let out = out.unwrap_or_else(|| {
                 let stem = scene
                     .file_stem()
@@ -497,11 +550,21 @@ fn run(cli: Cli) -> Result<()> {
                     .unwrap_or("render".into());
                 PathBuf::from(format!("{stem}.exr"))
             });
-            render_command(&scene, &sc, opts, &out, exposure, load_time.as_secs_f64())
+            render_command(
+                &scene,
+                &sc,
+                opts,
+                &out,
+                maps_file.as_deref(),
+                exposure,
+                load_time.as_secs_f64(),
+            )
         }
         Command::Maps {
             scene,
             out,
+            save,
+            resolution,
             maps,
             max_depth,
             seed,
@@ -510,11 +573,43 @@ fn run(cli: Cli) -> Result<()> {
             import,
         } => {
             set_threads(threads)?;
-            let mut sc = import.load(&scene)?;
-            maps.apply(&mut sc)?;
+            let sc = load_scene_with(&scene, &import, &maps, resolution)?;
             let mut guide = sc.guide.clone();
             params.apply(&mut guide)?;
-            maps_command(&sc, &out, &guide, max_depth, seed)
+            let save = save
+                .map(|p| {
+                    let hash = scene_content_hash(&scene, &sc)?;
+                    anyhow::Ok((p, hash))
+                })
+                .transpose()?;
+            maps_command(&sc, out.as_deref(), save, &guide, max_depth, seed)
+        }
+        Command::Merge {
+            out,
+            shards,
+            exposure,
+        } => {
+            if out.extension().and_then(|e| e.to_str()) != Some("exr") {
+                bail!(
+                    "the merged image must be an .exr file, got {}",
+                    out.display()
+                );
+            }
+            if !exposure.is_finite() {
+                bail!("--exposure must be finite");
+            }
+            let m = footprint_integrators::merge::merge(&out, &shards)?;
+            let png = out.with_extension("png");
+            write_png(&png, &m.image, exposure)?;
+            println!(
+                "merged {} shards ({} spp in all; layers {}) -> {}, {}",
+                m.shards,
+                m.spp,
+                m.layers.join(", "),
+                out.display(),
+                png.display()
+            );
+            Ok(())
         }
         Command::Compare {
             scene,
@@ -725,14 +820,17 @@ fn compare_variants(
 
 fn maps_command(
     scene: &Scene,
-    out: &Path,
+    out: Option<&Path>,
+    save: Option<(PathBuf, String)>,
     params: &footprint::settings::GuideParams,
     max_depth: Option<u32>,
     seed: Option<u64>,
 ) -> Result<()> {
-    use footprint_integrators::maps::{Guidance, picture};
+    use footprint_integrators::maps::{Guidance, picture, run_passes};
     use footprint_integrators::passes::PassSettings;
-    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    if let Some(out) = out {
+        std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    }
     let pass = PassSettings {
         paths: 0,
         max_depth: max_depth.unwrap_or(scene.settings.max_depth),
@@ -745,10 +843,28 @@ fn maps_command(
     );
     // Both maps, and their guide caches when the cache is on: what `combined-footprint` uses.
     let method = Method::from_names("combined", "footprint").map_err(anyhow::Error::msg)?;
-    let g = Guidance::build(scene, &method, params, &pass, &heap_bytes);
+    let passes = run_passes(scene, &method, params, &pass);
+    if let Some((path, hash)) = save {
+        use footprint_integrators::maps_file;
+        let key = maps_file::maps_key(&hash, scene, pass.max_depth, pass.seed);
+        maps_file::save(&path, &key, &passes)?;
+        let count = |p: &Option<footprint_integrators::passes::PassOutput>| {
+            p.as_ref().map(|o| o.particles.len()).unwrap_or(0)
+        };
+        let bytes = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
+        println!(
+            "saved the passes ({} photons, {} importons; {:.1} MB) -> {}",
+            count(&passes.light),
+            count(&passes.view),
+            bytes as f64 / 1e6,
+            path.display()
+        );
+    }
+    let g = Guidance::from_passes(scene, &method, params, passes, &heap_bytes);
     for line in &g.summaries {
         println!("{line}");
     }
+    let Some(out) = out else { return Ok(()) };
     for (built, file) in [(&g.photons, "photons.png"), (&g.importons, "importons.png")] {
         if let Some(b) = built {
             let path = out.join(file);
@@ -764,9 +880,12 @@ fn render_command(
     scene: &Scene,
     opts: RenderOptions,
     out: &Path,
+    maps_file: Option<&Path>,
     exposure: f32,
     load_s: f64,
 ) -> Result<()> {
+    use footprint_integrators::maps::{Guidance, needed_passes};
+    use footprint_integrators::merge;
     if out.extension().and_then(|e| e.to_str()) != Some("exr") {
         bail!("--out must name an .exr file, got {}", out.display());
     }
@@ -818,7 +937,45 @@ fn render_command(
     } else {
         None
     };
-    let result = footprint_integrators::render_with(scene, &opts, &heap_bytes, |f| {
+    let scene_hash = scene_content_hash(scene_path, scene)?;
+    let start = Instant::now();
+    let guidance = match maps_file.filter(|_| opts.method.guided()) {
+        Some(path) => {
+            let key = footprint_integrators::maps_file::maps_key(
+                &scene_hash,
+                scene,
+                opts.max_depth,
+                opts.seed,
+            );
+            let passes = footprint_integrators::maps_file::load(path, &key)?;
+            let (light, view) = needed_passes(&opts.method, &opts.guide_params);
+            if (light && passes.light.is_none()) || (view && passes.view.is_none()) {
+                bail!(
+                    "{} lacks a pass that {} needs (write it with `footprint maps --save`)",
+                    path.display(),
+                    opts.method.name()
+                );
+            }
+            Guidance::from_passes(scene, &opts.method, &opts.guide_params, passes, &heap_bytes)
+        }
+        None => {
+            if maps_file.is_some() {
+                eprintln!(
+                    "note: {} uses no particle map: --maps is ignored",
+                    opts.method.name()
+                );
+            }
+            let pass = footprint_integrators::passes::PassSettings {
+                paths: 0,
+                max_depth: opts.max_depth,
+                seed: opts.seed,
+                soft_glossy_max: scene.maps.soft_glossy_max,
+            };
+            Guidance::build(scene, &opts.method, &opts.guide_params, &pass, &heap_bytes)
+        }
+    };
+    let maps_load = start.elapsed();
+    let result = footprint_integrators::render_guided(scene, &opts, &guidance, start, |f| {
         if let Some(b) = &bar {
             b.set_position((f * 1000.0) as u64);
         }
@@ -873,13 +1030,28 @@ fn render_command(
                 scene.map_max_dist()
             ),
         ),
-        ("footprint/spp".to_string(), result.passes.to_string()),
+        (merge::SCENE_HASH.to_string(), scene_hash),
+        (
+            merge::SETTINGS.to_string(),
+            merge::settings_key(&opts, scene),
+        ),
+        (merge::SHARD.to_string(), opts.passes.to_string()),
+        (merge::SPP.to_string(), result.passes.to_string()),
+        (
+            merge::SPP_TOTAL.to_string(),
+            if opts.passes.is_all() {
+                result.passes
+            } else {
+                opts.spp
+            }
+            .to_string(),
+        ),
         (
             "footprint/max_depth".to_string(),
             opts.max_depth.to_string(),
         ),
-        ("footprint/seed".to_string(), opts.seed.to_string()),
-        ("footprint/render_time_s".to_string(), format!("{secs:.3}")),
+        (merge::SEED.to_string(), opts.seed.to_string()),
+        (merge::RENDER_TIME.to_string(), format!("{secs:.3}")),
         (
             "footprint/time_split_s".to_string(),
             format!(
@@ -896,6 +1068,14 @@ fn render_command(
             opts.time.map(|t| t.to_string()).unwrap_or("none".into()),
         ),
     ];
+    let mut header = header;
+    if let Some(path) = maps_file.filter(|_| opts.method.guided()) {
+        header.push(("footprint/maps_file".into(), path.display().to_string()));
+        header.push((
+            "footprint/maps_load_s".into(),
+            format!("{:.3}", maps_load.as_secs_f64()),
+        ));
+    }
     let layers: Vec<(&str, &footprint::film::Image)> =
         result.layers.iter().map(|(n, i)| (*n, i)).collect();
     write_exr(out, &layers, &header)?;
@@ -932,11 +1112,18 @@ fn render_command(
     let fallbacks = result.camera_guide.fallbacks + result.light_guide.fallbacks;
     let prepared = result.camera_guide.prepared + result.light_guide.prepared;
     println!(
-        "{}: {} ({}) {} spp {}x{} in {:.2} s (maps {:.2} s, {:.2} M paths/s), BSDF fallbacks {}/{}, max sample {:.4}, rejected {} -> {}, {}",
+        "{}: {} ({}) {} {}x{} in {:.2} s (maps {:.2} s, {:.2} M paths/s), BSDF fallbacks {}/{}, max sample {:.4}, rejected {} -> {}, {}",
         scene_path.display(),
         opts.method.integrator.name(),
         opts.method.guide.name(),
-        result.passes,
+        if opts.passes.is_all() {
+            format!("{} spp", result.passes)
+        } else {
+            format!(
+                "{} spp (shard {} of {} spp)",
+                result.passes, opts.passes, opts.spp
+            )
+        },
         cam.width,
         cam.height,
         secs,

@@ -6,12 +6,14 @@
 //! Reproducibility: camera path `i` of pass `k` and light path `i` of pass `k` each draw from
 //! their own random stream `(seed, k, i)`; light-path splats are applied chunk by chunk in
 //! chunk order. The image for a given seed and sample count is therefore the same whatever
-//! the number of threads.
+//! the number of threads. A shard ([`RenderOptions::passes`], [`crate::shard`]) draws only
+//! the passes `k` it owns, with the same streams, so shards add up to one run.
 
 use crate::integrator::Context;
 use crate::maps::{Guidance, MapTimings};
 use crate::method::Method;
 use crate::passes::PassSettings;
+use crate::shard::PassSelection;
 use footprint::Rgb;
 use footprint::film::filter::FilterKind;
 use footprint::film::{Film, FilmMode, Image, SampleStats, SplatList};
@@ -35,10 +37,13 @@ pub struct RenderOptions {
     pub time: Option<f64>,
     pub max_depth: u32,
     pub seed: u64,
+    /// Which of the passes `0..spp` to draw (a shard, [`crate::shard`]); all by default. With
+    /// a time budget, the selection's passes in order until the time is spent.
+    pub passes: PassSelection,
 }
 
 impl Default for RenderOptions {
-    /// Unguided path tracing, 16 samples per pixel, depth 8, seed 0.
+    /// Unguided path tracing, 16 samples per pixel, depth 8, seed 0, every pass.
     fn default() -> Self {
         RenderOptions {
             method: Method::default(),
@@ -48,6 +53,7 @@ impl Default for RenderOptions {
             time: None,
             max_depth: 8,
             seed: 0,
+            passes: PassSelection::ALL,
         }
     }
 }
@@ -65,6 +71,7 @@ impl RenderOptions {
             time: s.time,
             max_depth: s.max_depth,
             seed: s.seed,
+            passes: PassSelection::ALL,
         })
     }
 }
@@ -98,7 +105,8 @@ pub struct RenderResult {
     pub image: Image,
     /// Every estimate as `(layer name, image)`.
     pub layers: Vec<(&'static str, Image)>,
-    /// Passes done: samples per pixel (camera paths) and light paths per pixel.
+    /// Passes done (of the selected ones): samples per pixel (camera paths) and light paths
+    /// per pixel.
     pub passes: u32,
     /// Paths traced in all (camera and light).
     pub paths: u64,
@@ -131,15 +139,9 @@ pub fn render_with(
     scene: &Scene,
     opts: &RenderOptions,
     heap: &dyn Fn() -> Option<usize>,
-    mut on_progress: impl FnMut(f64),
+    on_progress: impl FnMut(f64),
 ) -> RenderResult {
     let start = Instant::now();
-    let cam = &scene.camera;
-    let npix = cam.pixel_count();
-    let integrator = opts.method.integrator;
-    let paths = integrator.paths();
-    let layers = integrator.layers();
-
     // ---- Particle maps and guide caches: only those the method uses ----
     let pass = PassSettings {
         paths: 0,
@@ -148,6 +150,24 @@ pub fn render_with(
         soft_glossy_max: scene.maps.soft_glossy_max,
     };
     let guidance = Guidance::build(scene, &opts.method, &opts.guide_params, &pass, heap);
+    render_guided(scene, opts, &guidance, start, on_progress)
+}
+
+/// Renders `scene` with maps and caches already built (or loaded, `footprint render
+/// --maps`); `start` is when the run began, so that the budget and the reported time include
+/// what was done before.
+pub fn render_guided(
+    scene: &Scene,
+    opts: &RenderOptions,
+    guidance: &Guidance,
+    start: Instant,
+    mut on_progress: impl FnMut(f64),
+) -> RenderResult {
+    let cam = &scene.camera;
+    let npix = cam.pixel_count();
+    let integrator = opts.method.integrator;
+    let paths = integrator.paths();
+    let layers = integrator.layers();
     let ctx = Context {
         scene,
         max_depth: opts.max_depth,
@@ -165,8 +185,17 @@ pub fn render_with(
     let mut camera_guide = GuideCounts::default();
     let mut light_guide = GuideCounts::default();
     let mut passes = 0u32;
+    let budget = opts.passes.passes_of(opts.spp);
+    assert!(
+        opts.time.is_some() || budget > 0,
+        "shard {} of {} spp has no passes",
+        opts.passes,
+        opts.spp
+    );
     let mut last_pass_end = start.elapsed().as_secs_f64();
     loop {
+        // The stream index of this pass (a shard draws every `count`-th pass).
+        let k = opts.passes.pass(passes) as u64;
         if paths.camera {
             // Splatting and filter importance sampling coincide for the box filter; the
             // box keeps the cheaper per-pixel accumulation.
@@ -180,8 +209,7 @@ pub fn render_with(
                         vec![SplatList::default(); if splat { layers.len() } else { 0 }];
                     for (x, out) in row.chunks_exact_mut(layers.len()).enumerate() {
                         let x = x as u32;
-                        let index =
-                            passes as u64 * npix as u64 + (y as u64 * cam.width as u64 + x as u64);
+                        let index = k * npix as u64 + (y as u64 * cam.width as u64 + x as u64);
                         let mut rng = Rng::new(opts.seed, DOMAIN_CAMERA, index);
                         let u = rng.uniform2();
                         let raster = if splat {
@@ -230,7 +258,7 @@ pub fn render_with(
                     let mut state = SamplerState::default();
                     let mut splats = vec![SplatList::default(); layers.len()];
                     for i in c * LT_CHUNK..((c + 1) * LT_CHUNK).min(npix) {
-                        let index = passes as u64 * npix as u64 + i as u64;
+                        let index = k * npix as u64 + i as u64;
                         let mut rng = Rng::new(opts.seed, DOMAIN_LIGHT, index);
                         integrator.light_path(&ctx, &mut rng, &mut state, &mut splats);
                     }
@@ -255,7 +283,7 @@ pub fn render_with(
             // Whole passes only: stop when another one would end more than half a pass past
             // the budget, so that the time spent is the budget to within half a pass.
             Some(t) => ((elapsed / t).min(1.0), elapsed + 0.5 * pass_time >= t),
-            None => (passes as f64 / opts.spp as f64, passes >= opts.spp),
+            None => (passes as f64 / budget as f64, passes >= budget),
         };
         on_progress(fraction);
         if done {

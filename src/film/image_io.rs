@@ -1,43 +1,14 @@
 //! Writing images: OpenEXR (linear float RGB, one layer per estimate, settings in the
-//! header) and a PNG preview. Both are written to a temporary file in the target folder and
-//! renamed over the target, so a failed or interrupted run never truncates a good image.
+//! header) and a PNG preview. Both are written whole or not at all ([`crate::atomic_file`]),
+//! so a failed or interrupted run never truncates a good image.
 //!
 //! PNG tone map: `srgb(clamp(2^exposure · rgb, 0, 1))`, with the sRGB transfer function
 //! (IEC 61966-2-1); exposure 0 by default. No other curve is applied.
 
-use crate::error::{Error, Result};
+use crate::atomic_file::atomic_write;
+use crate::error::Result;
 use crate::film::Image;
-use std::path::{Path, PathBuf};
-
-fn tmp_path(path: &Path) -> PathBuf {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().to_string())
-        .unwrap_or_default();
-    path.with_file_name(format!(".{name}.tmp-{}", std::process::id()))
-}
-
-/// Runs `write` against a temporary file, then renames it over `path`.
-fn atomic_write(
-    path: &Path,
-    write: impl FnOnce(&Path) -> std::result::Result<(), String>,
-) -> Result<()> {
-    let tmp = tmp_path(path);
-    if let Err(message) = write(&tmp) {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(Error::Write {
-            path: path.to_path_buf(),
-            message,
-        });
-    }
-    std::fs::rename(&tmp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        Error::Write {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        }
-    })
-}
+use std::path::Path;
 
 /// Writes an EXR with one RGB layer per `(name, image)` and text attributes in the header.
 pub fn write_exr(
@@ -166,4 +137,124 @@ pub fn read_exr_text_attribute(path: &Path, key: &str) -> Option<String> {
         AttributeValue::Text(t) => Some(t.to_string()),
         _ => None,
     }
+}
+
+/// The header of an EXR as [`write_exr`] writes it: every layer's name and size, and the
+/// text attributes, sorted by key.
+pub struct ExrHeader {
+    pub layers: Vec<(String, u32, u32)>,
+    pub attributes: Vec<(String, String)>,
+}
+
+/// The text attributes among `maps`, first occurrence of a key kept, sorted by key.
+fn text_attributes<'a>(
+    maps: impl Iterator<
+        Item = &'a std::collections::HashMap<
+            exr::meta::attribute::Text,
+            exr::meta::attribute::AttributeValue,
+        >,
+    >,
+) -> Vec<(String, String)> {
+    use exr::meta::attribute::AttributeValue;
+    let mut out: Vec<(String, String)> = Vec::new();
+    for m in maps {
+        for (k, v) in m {
+            if let AttributeValue::Text(t) = v {
+                let k = k.to_string();
+                if !out.iter().any(|(a, _)| *a == k) {
+                    out.push((k, t.to_string()));
+                }
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// Reads the header of an EXR (no pixels): cheap, for checks before reading many files.
+pub fn read_exr_header(path: &Path) -> crate::error::Result<ExrHeader> {
+    let fail = |m: String| crate::error::Error::Other(format!("{}: {m}", path.display()));
+    let meta = exr::meta::MetaData::read_from_file(path, false)
+        .map_err(|e| fail(format!("not a readable EXR ({e})")))?;
+    let layers = meta
+        .headers
+        .iter()
+        .map(|h| {
+            let name = h
+                .own_attributes
+                .layer_name
+                .as_ref()
+                .map(|n| n.to_string())
+                .unwrap_or_default();
+            (
+                name,
+                h.layer_size.width() as u32,
+                h.layer_size.height() as u32,
+            )
+        })
+        .collect();
+    let attributes = text_attributes(
+        meta.headers
+            .iter()
+            .flat_map(|h| [&h.shared_attributes.other, &h.own_attributes.other]),
+    );
+    Ok(ExrHeader { layers, attributes })
+}
+
+/// An EXR as [`write_exr`] writes it: every layer's RGB image by name, and the header's text
+/// attributes, sorted by key.
+pub struct ExrLayers {
+    pub layers: Vec<(String, Image)>,
+    pub attributes: Vec<(String, String)>,
+}
+
+/// Reads every RGB layer and the text attributes of an EXR. A layer without R, G and B
+/// channels is an error naming the file.
+pub fn read_exr_layers(path: &Path) -> crate::error::Result<ExrLayers> {
+    use exr::prelude::*;
+    let fail = |m: String| crate::error::Error::Other(format!("{}: {m}", path.display()));
+    let img = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .all_layers()
+        .all_attributes()
+        .from_file(path)
+        .map_err(|e| fail(format!("not a readable EXR ({e})")))?;
+    let attributes = text_attributes(
+        std::iter::once(&img.attributes.other)
+            .chain(img.layer_data.iter().map(|l| &l.attributes.other)),
+    );
+    let mut layers = Vec::new();
+    for layer in &img.layer_data {
+        let name = layer
+            .attributes
+            .layer_name
+            .as_ref()
+            .map(|n| n.to_string())
+            .unwrap_or_default();
+        let (w, h) = (layer.size.width(), layer.size.height());
+        let channel = |c: &str| -> crate::error::Result<Vec<f32>> {
+            layer
+                .channel_data
+                .list
+                .iter()
+                .find(|ch| ch.name.to_string() == c)
+                .map(|ch| ch.sample_data.values_as_f32().collect())
+                .ok_or_else(|| fail(format!("layer '{name}' has no {c} channel")))
+        };
+        let (r, g, b) = (channel("R")?, channel("G")?, channel("B")?);
+        let pixels = (0..w * h)
+            .map(|i| glam::Vec3::new(r[i], g[i], b[i]))
+            .collect();
+        layers.push((
+            name,
+            crate::film::Image {
+                width: w as u32,
+                height: h as u32,
+                pixels,
+            },
+        ));
+    }
+    Ok(ExrLayers { layers, attributes })
 }

@@ -102,3 +102,38 @@ pub fn mean_stderr(xs: &[f64]) -> (f64, f64) {
     let var = xs.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n - 1.0);
     (m, (var / n).sqrt())
 }
+
+/// A copy of the cornell scene in a fresh folder `footprint-{tag}-PID` under the temporary
+/// folder (so that caches and outputs stay out of the repository, and a changed copy is
+/// "another scene"); returns the folder.
+pub fn cornell_copy(tag: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("footprint-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    let src = scenes_dir().join("cornell");
+    for f in ["cornell.toml", "cornell.obj", "cornell.mtl"] {
+        std::fs::copy(src.join(f), d.join(f)).unwrap();
+    }
+    d
+}
+
+/// Every layer of EXR `a` equals `b`'s to float rounding (relative 10⁻⁶: a few f32 ulp), and
+/// none is black.
+pub fn assert_same_exr(a: &std::path::Path, b: &std::path::Path, what: &str) {
+    use footprint::film::image_io::{ExrLayers, read_exr_layers};
+    let (a, b) = (read_exr_layers(a).unwrap(), read_exr_layers(b).unwrap());
+    let names = |e: &ExrLayers| e.layers.iter().map(|l| l.0.clone()).collect::<Vec<_>>();
+    assert_eq!(names(&a), names(&b), "{what}: layers");
+    let mut worst = 0.0f32;
+    for ((name, x), (_, y)) in a.layers.iter().zip(&b.layers) {
+        assert_eq!(x.pixels.len(), y.pixels.len());
+        assert!(x.mean().max_element() > 0.0, "{what}: {name} is black");
+        for (p, q) in x.pixels.iter().zip(&y.pixels) {
+            for c in 0..3 {
+                let d = (p[c] - q[c]).abs() / p[c].abs().max(q[c].abs()).max(1e-30);
+                worst = worst.max(d);
+            }
+        }
+    }
+    assert!(worst < 1e-6, "{what}: relative difference {worst:e}");
+}
