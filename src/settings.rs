@@ -59,6 +59,9 @@ pub struct RenderSettings {
     pub time: Option<f64>,
     /// Maximum number of path segments.
     pub max_depth: u32,
+    /// Russian roulette applies after scattering at vertices of this depth or deeper
+    /// (Mitsuba's `rr_depth`).
+    pub rr_depth: u32,
     pub seed: u64,
 }
 
@@ -70,6 +73,7 @@ impl Default for RenderSettings {
             spp: 16,
             time: None,
             max_depth: 8,
+            rr_depth: 5,
             seed: 0,
         }
     }
@@ -88,6 +92,12 @@ impl RenderSettings {
                     format!("must be a positive number of seconds, got {t}"),
                 );
             }
+        }
+        if self.rr_depth == 0 || self.rr_depth > 1024 {
+            return e(
+                "rr_depth",
+                format!("must be in 1..=1024, got {}", self.rr_depth),
+            );
         }
         if self.max_depth == 0 || self.max_depth > 1024 {
             return e(

@@ -65,6 +65,7 @@ fn check_scene(name: &str, guided: bool) -> Vec<[f32; 3]> {
     let pass = PassSettings {
         paths: 0,
         max_depth: 8,
+        rr_depth: footprint_integrators::walk::RR_START_DEPTH,
         seed: 3,
         soft_glossy_max: scene.maps.soft_glossy_max,
     };

@@ -162,6 +162,10 @@ enum Command {
         /// Maximum path length in segments [default: the scene's render.max_depth, else 8]
         #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
         max_depth: Option<u32>,
+        /// Russian roulette after scattering at vertices of this depth or deeper (Mitsuba's
+        /// rr_depth) [default: the scene's render.rr_depth, else 5]
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+        rr_depth: Option<u32>,
         /// Random seed; equal seeds give equal images whatever the thread count [default: the scene's render.seed, else 0]
         #[arg(long)]
         seed: Option<u64>,
@@ -476,6 +480,7 @@ fn run(cli: Cli) -> Result<()> {
             spp,
             time,
             max_depth,
+            rr_depth,
             seed,
             out,
             exposure,
@@ -524,6 +529,9 @@ fn run(cli: Cli) -> Result<()> {
             }
             if let Some(d) = max_depth {
                 opts.max_depth = d;
+            }
+            if let Some(d) = rr_depth {
+                opts.rr_depth = d;
             }
             if let Some(s) = seed {
                 opts.seed = s;
@@ -834,6 +842,7 @@ fn maps_command(
     let pass = PassSettings {
         paths: 0,
         max_depth: max_depth.unwrap_or(scene.settings.max_depth),
+        rr_depth: footprint_integrators::walk::RR_START_DEPTH,
         seed: seed.unwrap_or(scene.settings.seed),
         soft_glossy_max: scene.maps.soft_glossy_max,
     };
@@ -968,6 +977,7 @@ fn render_command(
             let pass = footprint_integrators::passes::PassSettings {
                 paths: 0,
                 max_depth: opts.max_depth,
+                rr_depth: footprint_integrators::walk::RR_START_DEPTH,
                 seed: opts.seed,
                 soft_glossy_max: scene.maps.soft_glossy_max,
             };

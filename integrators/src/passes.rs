@@ -46,6 +46,8 @@ pub struct PassSettings {
     pub paths: usize,
     /// Maximum path segments.
     pub max_depth: u32,
+    /// Russian roulette after scattering at vertices of this depth or deeper.
+    pub rr_depth: u32,
     pub seed: u64,
     /// Blinn exponents up to this count as "soft glossy" and store particles; above it a
     /// surface is "strongly glossy" and is treated like a specular one.
@@ -223,6 +225,7 @@ pub fn light_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> P
             beta0: beta,
             mode: TransportMode::Importance,
             max_vertex_depth: s.max_depth,
+            rr_depth: s.rr_depth,
         };
         trace(scene, s, &start, sampler, state, &mut rng, out);
     });
@@ -258,6 +261,7 @@ pub fn view_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> Pa
             beta0: Rgb::splat(inv_n),
             mode: TransportMode::Radiance,
             max_vertex_depth: s.max_depth,
+            rr_depth: s.rr_depth,
         };
         trace(scene, s, &start, sampler, state, &mut rng, out);
     });

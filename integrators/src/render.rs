@@ -36,6 +36,8 @@ pub struct RenderOptions {
     /// Time budget in seconds, passes that build maps included; replaces `spp` when set.
     pub time: Option<f64>,
     pub max_depth: u32,
+    /// Russian roulette after scattering at vertices of this depth or deeper.
+    pub rr_depth: u32,
     pub seed: u64,
     /// Which of the passes `0..spp` to draw (a shard, [`crate::shard`]); all by default. With
     /// a time budget, the selection's passes in order until the time is spent.
@@ -52,6 +54,7 @@ impl Default for RenderOptions {
             spp: 16,
             time: None,
             max_depth: 8,
+            rr_depth: crate::walk::RR_START_DEPTH,
             seed: 0,
             passes: PassSelection::ALL,
         }
@@ -70,6 +73,7 @@ impl RenderOptions {
             spp: s.spp,
             time: s.time,
             max_depth: s.max_depth,
+            rr_depth: s.rr_depth,
             seed: s.seed,
             passes: PassSelection::ALL,
         })
@@ -146,6 +150,7 @@ pub fn render_with(
     let pass = PassSettings {
         paths: 0,
         max_depth: opts.max_depth,
+        rr_depth: opts.rr_depth,
         seed: opts.seed,
         soft_glossy_max: scene.maps.soft_glossy_max,
     };
@@ -171,6 +176,7 @@ pub fn render_guided(
     let ctx = Context {
         scene,
         max_depth: opts.max_depth,
+        rr_depth: opts.rr_depth,
         camera_sampler: guidance.camera_sampler(scene, &opts.method, &opts.guide_params),
         light_sampler: guidance.light_sampler(scene, &opts.method, &opts.guide_params),
         guided_mis: opts.guide_params.guided_mis,

@@ -10,7 +10,7 @@
 //! `max_vertex_depth` and scatters only from vertices below it.
 //!
 //! **Russian roulette, one rule** for every walk: after scattering at a vertex of depth
-//! [`RR_START_DEPTH`] or more, the path continues with probability
+//! `rr_depth` ([`RR_START_DEPTH`] by default) or more, the path continues with probability
 //! `q = clamp(max_c β_c / max_c β_0, 0.05, 1)` (β the throughput after scattering, β_0 the
 //! throughput the walk started with) and its throughput is divided by `q`. Camera paths
 //! start at β_0 = 1; light paths and particles at their emitted weight, so the rule reads
@@ -24,8 +24,9 @@ use footprint::scene::Scene;
 use footprint::scene::geometry::{SurfaceHit, spawn_origin};
 use glam::Vec3;
 
-/// Russian roulette applies after scattering at vertices of this depth or deeper.
-pub const RR_START_DEPTH: u32 = 3;
+/// Russian roulette applies after scattering at vertices of this depth or deeper, unless a
+/// walk says otherwise (`Start::rr_depth`, the render's `rr_depth`).
+pub const RR_START_DEPTH: u32 = 5;
 
 /// The rule: survival probability for throughput `beta` of a walk that started at `beta0`.
 #[inline]
@@ -90,6 +91,8 @@ pub struct Start {
     pub beta0: Rgb,
     pub mode: TransportMode,
     pub max_vertex_depth: u32,
+    /// Russian roulette after scattering at vertices of this depth or deeper.
+    pub rr_depth: u32,
 }
 
 /// Walks from `start` until the path leaves the scene, reaches `max_vertex_depth`, fails
@@ -153,7 +156,7 @@ pub fn walk<'a>(
         };
 
         // ---- Russian roulette ----
-        if depth >= RR_START_DEPTH {
+        if depth >= start.rr_depth {
             let q = survival_probability(beta, beta0_max);
             if rng.uniform() >= q {
                 return;

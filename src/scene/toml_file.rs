@@ -61,6 +61,7 @@ struct RenderDesc {
     spp: Option<u32>,
     time: Option<f64>,
     max_depth: Option<u32>,
+    rr_depth: Option<u32>,
     seed: Option<u64>,
 }
 
@@ -198,6 +199,7 @@ fn build_scene(path: &Path, text: &str, dir: &Path, file: SceneFile) -> Result<S
         spp: r.spp.unwrap_or(defaults.spp),
         time: r.time,
         max_depth: r.max_depth.unwrap_or(defaults.max_depth),
+        rr_depth: r.rr_depth.unwrap_or(defaults.rr_depth),
         seed: r.seed.unwrap_or(defaults.seed),
     };
     settings

@@ -45,7 +45,7 @@ impl Integrator for Combined {
             ctx.scene,
             cam.position,
             cam.ray_dir(raster),
-            ctx.max_depth,
+            (ctx.max_depth, ctx.rr_depth),
             &ctx.camera_sampler,
             state,
             rng,

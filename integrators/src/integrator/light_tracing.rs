@@ -158,6 +158,7 @@ pub fn trace<'a, W: LightShare>(
         mode: TransportMode::Importance,
         // A connection from the n-th hit closes n + 1 segments.
         max_vertex_depth: ctx.max_depth - 1,
+        rr_depth: ctx.rr_depth,
     };
     let mut v = LightVisitor {
         scene,

@@ -31,6 +31,8 @@ pub struct Context<'a> {
     pub scene: &'a Scene,
     /// Maximum path length in segments (the camera ray or the first light segment is 1).
     pub max_depth: u32,
+    /// Russian roulette after scattering at vertices of this depth or deeper.
+    pub rr_depth: u32,
     pub camera_sampler: GuidedSampler<'a>,
     pub light_sampler: GuidedSampler<'a>,
     /// The combined image's MIS weights use the guided samplers' densities (else the

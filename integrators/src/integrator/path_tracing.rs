@@ -59,7 +59,7 @@ impl Integrator for PathTracing {
             ctx.scene,
             cam.position,
             cam.ray_dir(raster),
-            ctx.max_depth,
+            (ctx.max_depth, ctx.rr_depth),
             &ctx.camera_sampler,
             state,
             rng,
@@ -126,17 +126,18 @@ pub fn radiance_along(
 ) -> Rgb {
     let sampler = GuidedSampler::bsdf();
     let mut state = SamplerState::default();
-    trace(scene, origin, dir, max_depth, &sampler, &mut state, rng, ()).pt
+    let depths = (max_depth, crate::walk::RR_START_DEPTH);
+    trace(scene, origin, dir, depths, &sampler, &mut state, rng, ()).pt
 }
 
-/// Traces one camera path from `origin` along `dir`; `share` receives the second
-/// estimate's weights (its `origin` must be the camera position).
+/// Traces one camera path from `origin` along `dir` with `(max_depth, rr_depth)`; `share`
+/// receives the second estimate's weights (its `origin` must be the camera position).
 #[allow(clippy::too_many_arguments)]
 pub fn trace<'a, S: CameraShare>(
     scene: &Scene,
     origin: Vec3,
     dir: Vec3,
-    max_depth: u32,
+    (max_depth, rr_depth): (u32, u32),
     sampler: &GuidedSampler<'a>,
     state: &mut SamplerState<'a>,
     rng: &mut Rng,
@@ -154,6 +155,7 @@ pub fn trace<'a, S: CameraShare>(
         beta0: Rgb::ONE,
         mode: TransportMode::Radiance,
         max_vertex_depth: max_depth,
+        rr_depth,
     };
     walk(scene, &start, sampler, state, rng, &mut v);
     v.out

@@ -295,6 +295,17 @@ impl<'a, 'd> Builder<'a, 'd> {
                 return Ok(());
             }
         }
+        if let Some(d) = p.integer("rr_depth")? {
+            self.settings.rr_depth = match d {
+                1..=1024 => d as u32,
+                _ => {
+                    return Err(self.doc.err(
+                        p.get("rr_depth").unwrap_or(node),
+                        format!("rr_depth must be in 1..=1024, got {d}"),
+                    ));
+                }
+            };
+        }
         if let Some(d) = p.integer("max_depth")? {
             self.settings.max_depth = match d {
                 -1 => 1024,
