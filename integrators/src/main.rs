@@ -397,7 +397,15 @@ fn parse_resolution(s: &str) -> std::result::Result<(u32, u32), String> {
 }
 
 fn main() {
-    let cli = Cli::parse();
+    // Bad input exits with 1 whether the argument parser or the renderer finds it (clap's
+    // own exit code for a usage error is 2); `--help` and `--version` exit with 0.
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let _ = e.print();
+            std::process::exit(if e.use_stderr() { 1 } else { 0 });
+        }
+    };
     if let Err(e) = run(cli) {
         eprintln!("error: {e:#}");
         std::process::exit(1);
