@@ -184,8 +184,9 @@ fn a_short_compare_writes_every_file_with_one_row_per_method() {
             std::env::var_os("CI").is_none(),
             "Chromium is missing on CI: .ci/run installs it"
         );
-        eprintln!(
-            "\n*** SKIPPED: the headless Chromium check of index.html (no chromium on this machine; .ci/run installs it) ***\n"
+        common::skip(
+            "a_short_compare_writes_every_file_with_one_row_per_method",
+            "the headless Chromium check of index.html (no chromium on this machine; .ci/run installs it)",
         );
         return;
     };
