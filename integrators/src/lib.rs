@@ -21,4 +21,6 @@ pub mod render;
 pub mod walk;
 
 pub use method::Method;
-pub use render::{RenderOptions, RenderResult, render, render_with};
+pub use render::{
+    RenderOptions, RenderResult, StopRule, guidance, render, render_prepared, render_with,
+};

@@ -570,13 +570,33 @@ fn run(cli: Cli) -> Result<()> {
             )?;
             let last = *settings.ladder.last().unwrap();
             println!(
-                "{:<28} {:>6} {:>9} {:>12} {:>12} {:>7}",
+                "{:<28} {:>6} {:>9} {:>12} {:>12} {:>7}  budget",
                 "method", "spp", "seconds", "rel. MSE", "MAE", "spots"
             );
             for r in rows.iter().filter(|r| r.time_budget == last) {
                 println!(
-                    "{:<28} {:>6} {:>9.2} {:>12.4e} {:>12.4e} {:>7}",
-                    r.method, r.spp, r.seconds, r.rel_mse, r.mae, r.spots
+                    "{:<28} {:>6} {:>9.2} {:>12.4e} {:>12.4e} {:>7}  {}",
+                    r.method,
+                    r.spp,
+                    r.seconds,
+                    r.rel_mse,
+                    r.mae,
+                    r.spots,
+                    if r.budget_missed { "MISSED" } else { "kept" }
+                );
+            }
+            let missed: Vec<String> = rows
+                .iter()
+                .filter(|r| r.budget_missed)
+                .map(|r| format!("{} at {} s ({:.2} s)", r.method, r.time_budget, r.seconds))
+                .collect();
+            if !missed.is_empty() {
+                eprintln!(
+                    "warning: {} of {} runs missed their budget by more than {:.0}% (budget_missed in metrics.csv and metrics.json, red in index.html): {}",
+                    missed.len(),
+                    rows.len(),
+                    100.0 * footprint_integrators::compare::BUDGET_TOLERANCE,
+                    missed.join(", ")
                 );
             }
             println!(
