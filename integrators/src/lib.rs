@@ -6,13 +6,15 @@
 //!   both particle passes share;
 //! * [`mis`]: the combined image's weights, kept as running quantities per subpath;
 //! * [`passes`]: the light pass (photon map) and the view pass (importance map);
-//! * [`maps`]: building the maps and guide caches a method needs, and pictures of the maps;
+//! * [`maps`]: building the maps and guide caches a method needs;
+//! * [`map_picture`]: pictures of the maps (a density estimate per pixel, log scale, legend);
 //! * [`method`]: a method (integrator x guide), resolved from names in one place;
 //! * [`render`]: passes, threads, time budgets, progress, and the run summary;
 //! * [`compare`]: equal-time comparisons, error against time, parameter sweeps.
 
 pub mod compare;
 pub mod integrator;
+pub mod map_picture;
 pub mod maps;
 pub mod method;
 pub mod mis;

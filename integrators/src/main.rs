@@ -178,10 +178,21 @@ enum Command {
         import: ImportArgs,
     },
     /// Build the photon map and the importance map and write pictures of them seen from the camera
+    ///
+    /// Runs the light pass (photons) and the view pass (importons), builds both maps and
+    /// their guide caches (what `render --integrator combined --guide footprint` uses) and
+    /// prints for each its particles, bytes per particle, pass and build times, and the
+    /// caches' regions, memory and build time. Writes DIR/photons.png (irradiance, W/m²) and
+    /// DIR/importons.png (importance per m²): for every pixel a density estimate from the 32
+    /// nearest particles at the surface the pixel sees, on a log scale with a legend below the
+    /// image; surfaces without particles are grey.
+    ///
+    /// Example: footprint maps scenes/door/door.toml --out maps-door
     Maps {
         /// Scene file: footprint TOML (.toml) or Mitsuba 3 XML (.xml)
         scene: PathBuf,
-        /// Folder for photons.png and importons.png (created if missing)
+        /// Folder for photons.png and importons.png (created if missing; existing pictures
+        /// are replaced)
         #[arg(long, short)]
         out: PathBuf,
         #[command(flatten)]
@@ -735,7 +746,8 @@ fn maps_command(
     max_depth: Option<u32>,
     seed: Option<u64>,
 ) -> Result<()> {
-    use footprint_integrators::maps::{Guidance, picture};
+    use footprint_integrators::map_picture::{PICTURE_K, density_picture};
+    use footprint_integrators::maps::Guidance;
     use footprint_integrators::passes::PassSettings;
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let pass = PassSettings {
@@ -757,8 +769,20 @@ fn maps_command(
     for (built, file) in [(&g.photons, "photons.png"), (&g.importons, "importons.png")] {
         if let Some(b) = built {
             let path = out.join(file);
-            write_png(&path, &picture(scene, &b.pass.particles), 0.0)?;
-            println!("  -> {}", path.display());
+            let pic = density_picture(scene, &b.map, PICTURE_K);
+            write_png(&path, &pic.image, 0.0)?;
+            match pic.range {
+                Some((lo, hi)) => println!(
+                    "  -> {}: {} from the {PICTURE_K} nearest particles per pixel, log scale {lo:.3e} to {hi:.3e}; particles on {:.0}% of the visible surface",
+                    path.display(),
+                    pic.quantity,
+                    100.0 * pic.covered
+                ),
+                None => println!(
+                    "  -> {}: no particle on any visible surface",
+                    path.display()
+                ),
+            }
         }
     }
     Ok(())
