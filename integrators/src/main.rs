@@ -603,7 +603,7 @@ fn run(cli: Cli) -> Result<()> {
                 .collect();
             if !missed.is_empty() {
                 eprintln!(
-                    "warning: {} of {} runs missed their budget by more than {:.0}% (budget_missed in metrics.csv and metrics.json, red in index.html): {}",
+                    "warning: {} of {} runs missed their budget (took more than {:.0}% longer, or their maps alone took longer; budget_missed in metrics.csv and metrics.json, red in index.html): {}",
                     missed.len(),
                     rows.len(),
                     100.0 * footprint_integrators::compare::BUDGET_TOLERANCE,
