@@ -60,6 +60,9 @@ pub struct RenderSettings {
     /// Maximum number of path segments.
     pub max_depth: u32,
     pub seed: u64,
+    /// Exposure of the PNG preview in stops (`--exposure` overrides it): a dim scene such as
+    /// door sets it so that its first picture is not black.
+    pub exposure: f32,
 }
 
 impl Default for RenderSettings {
@@ -71,6 +74,7 @@ impl Default for RenderSettings {
             time: None,
             max_depth: 8,
             seed: 0,
+            exposure: 0.0,
         }
     }
 }
@@ -88,6 +92,12 @@ impl RenderSettings {
                     format!("must be a positive number of seconds, got {t}"),
                 );
             }
+        }
+        if !self.exposure.is_finite() {
+            return e(
+                "exposure",
+                format!("must be a finite number of stops, got {}", self.exposure),
+            );
         }
         if self.max_depth == 0 || self.max_depth > 1024 {
             return e(

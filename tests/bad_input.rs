@@ -141,6 +141,11 @@ fn toml_syntax_errors_and_unknown_keys_name_the_line() {
         &["render.spp"],
     );
     run(
+        "nan-exposure",
+        scene("").replace("spp = 1", "spp = 1\nexposure = nan"),
+        &["render.exposure"],
+    );
+    run(
         "bad-scale",
         scene("transform = { scale = 0.0 }\n"),
         &["mesh[0].transform.scale"],

@@ -32,7 +32,7 @@ fn heap_bytes() -> Option<usize> {
     about = "A physically based CPU renderer that guides light and view paths with particle maps",
     long_about = "footprint renders scenes described in TOML (see README.md, \"Scene format\") or \
                   Mitsuba 3 XML (docs/mitsuba.md) with path tracing, light tracing or both, guided \
-                  by particle maps.\n\nExamples:\n  footprint render scenes/door/door.toml --spp 64\n  \
+                  by particle maps.\n\nExamples:\n  footprint render scenes/desk/desk.toml\n  \
                   footprint render scene.xml -D resx=128 -D resy=72"
 )]
 struct Cli {
@@ -161,9 +161,10 @@ enum Command {
         /// [default: <scene name>.exr in the current directory]
         #[arg(long, short)]
         out: Option<PathBuf>,
-        /// Exposure of the PNG preview in stops (the preview is 2^exposure * linear, clamped, sRGB-encoded)
-        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
-        exposure: f32,
+        /// Exposure of the PNG preview in stops (the preview is 2^exposure * linear, clamped,
+        /// sRGB-encoded) [default: the scene's render.exposure, else 0]
+        #[arg(long, allow_negative_numbers = true)]
+        exposure: Option<f32>,
         /// Image size WIDTHxHEIGHT, replacing the scene's camera.resolution (same vertical field of view)
         #[arg(long, value_parser = parse_resolution)]
         resolution: Option<(u32, u32)>,
@@ -460,7 +461,7 @@ fn run(cli: Cli) -> Result<()> {
                     bail!("--time must be a positive number of seconds, got {t}");
                 }
             }
-            if !exposure.is_finite() {
+            if exposure.is_some_and(|x| !x.is_finite()) {
                 bail!("--exposure must be finite");
             }
             let t0 = Instant::now();
@@ -494,6 +495,7 @@ fn run(cli: Cli) -> Result<()> {
                     .unwrap_or("render".into());
                 PathBuf::from(format!("{stem}.exr"))
             });
+            let exposure = exposure.unwrap_or(sc.settings.exposure);
             render_command(&scene, &sc, opts, &out, exposure, load_time.as_secs_f64())
         }
         Command::Maps {

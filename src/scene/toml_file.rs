@@ -62,6 +62,7 @@ struct RenderDesc {
     time: Option<f64>,
     max_depth: Option<u32>,
     seed: Option<u64>,
+    exposure: Option<f32>,
 }
 
 #[derive(Deserialize, Debug)]
@@ -199,6 +200,7 @@ fn build_scene(path: &Path, text: &str, dir: &Path, file: SceneFile) -> Result<S
         time: r.time,
         max_depth: r.max_depth.unwrap_or(defaults.max_depth),
         seed: r.seed.unwrap_or(defaults.seed),
+        exposure: r.exposure.unwrap_or(defaults.exposure),
     };
     settings
         .validate()
