@@ -433,25 +433,33 @@ pub fn convergence_svg(rows: &[Row], methods: &[String]) -> String {
     );
     for (i, m) in methods.iter().enumerate() {
         let c = colours[i % colours.len()];
-        let line: Vec<String> = rows
+        let pts: Vec<(f64, f64, bool)> = rows
             .iter()
             .filter(|r| &r.method == m && r.rel_mse > 0.0)
             .map(|r| {
-                format!(
-                    "{:.1},{:.1}",
+                (
                     px(r.seconds.max(1e-3).log10()),
-                    py(r.rel_mse.log10())
+                    py(r.rel_mse.log10()),
+                    r.budget_missed,
                 )
             })
+            .collect();
+        let line: Vec<String> = pts
+            .iter()
+            .map(|p| format!("{:.1},{:.1}", p.0, p.1))
             .collect();
         let _ = writeln!(
             s,
             "<polyline class=\"method\" fill=\"none\" stroke=\"{c}\" stroke-width=\"2\" points=\"{}\"/>",
             line.join(" ")
         );
-        for p in &line {
-            let (x, y) = p.split_once(',').unwrap();
-            let _ = writeln!(s, "<circle cx=\"{x}\" cy=\"{y}\" r=\"3\" fill=\"{c}\"/>");
+        // A run that missed its budget is a hollow point.
+        for &(x, y, missed) in &pts {
+            let fill = if missed { "white" } else { c };
+            let _ = writeln!(
+                s,
+                "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"3.5\" fill=\"{fill}\" stroke=\"{c}\" stroke-width=\"1.5\"/>"
+            );
         }
         let _ = writeln!(
             s,
@@ -460,6 +468,17 @@ pub fn convergence_svg(rows: &[Row], methods: &[String]) -> String {
             t + 10.0 + 18.0 * i as f64,
             w - rgt + 34.0,
             t + 15.0 + 18.0 * i as f64
+        );
+    }
+    if rows.iter().any(|r| r.budget_missed) {
+        let y = t + 15.0 + 18.0 * methods.len() as f64 + 8.0;
+        let _ = writeln!(
+            s,
+            "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"3.5\" fill=\"white\" stroke=\"#444\" stroke-width=\"1.5\"/><text x=\"{:.1}\" y=\"{:.1}\">budget missed</text>",
+            w - rgt + 22.0,
+            y - 4.0,
+            w - rgt + 34.0,
+            y
         );
     }
     s += "</svg>\n";
@@ -691,7 +710,7 @@ fn html(
     let mut out = String::new();
     let _ = write!(
         out,
-        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>footprint compare: {scene}</title>\n<style>\nbody {{ font-family: sans-serif; margin: 20px; }}\n.grid {{ display: flex; flex-wrap: wrap; gap: 16px; }}\n.cell {{ text-align: center; }}\n.crop {{ position: relative; overflow: hidden; border: 1px solid #888; }}\n.crop img {{ position: absolute; image-rendering: pixelated; }}\nimg.full {{ width: {w2}px; image-rendering: pixelated; }}\ntable {{ border-collapse: collapse; }} td, th {{ border: 1px solid #ccc; padding: 3px 8px; text-align: right; }}\ntr.missed td {{ background: #fde0dc; }}\n.warn {{ color: #b00; font-weight: bold; }}\n</style></head><body>\n<h1>{scene}</h1>\n<p>Every method for {t_eq} s of wall-clock time, passes that build the particle maps included (built once per method and charged to every rung); reference: {refsrc}. Relative MSE = mean of (X - R)² / (R² + 0.01) after dividing by the reference mean; spots = pixels whose luminance error exceeds {SPOT_FACTOR} x the reference (+1% of its mean). Crops: the centre quarter, {zoom}x.</p>\n",
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>footprint compare: {scene}</title>\n<style>\nbody {{ font-family: sans-serif; margin: 20px; }}\n.grid {{ display: flex; flex-wrap: wrap; gap: 16px; }}\n.cell {{ text-align: center; }}\n.crop {{ position: relative; overflow: hidden; border: 1px solid #888; }}\n.crop img {{ position: absolute; image-rendering: pixelated; }}\nimg.full {{ width: {w2}px; image-rendering: pixelated; }}\ntable {{ border-collapse: collapse; }} td, th {{ border: 1px solid #ccc; padding: 3px 8px; text-align: right; white-space: nowrap; }}\ntr.missed td {{ background: #fde0dc; }}\n.warn {{ color: #b00; font-weight: bold; }}\n</style></head><body>\n<h1>{scene}</h1>\n<p>Every method for {t_eq} s of wall-clock time, passes that build the particle maps included (built once per method and charged to every rung); reference: {refsrc}. Relative MSE = mean of (X - R)² / (R² + 0.01) after dividing by the reference mean; spots = pixels whose luminance error exceeds {SPOT_FACTOR} x the reference (+1% of its mean). Crops: the centre quarter, {zoom}x.</p>\n",
         scene = scene_path.display(),
         w2 = w.max(256),
         refsrc = ref_source

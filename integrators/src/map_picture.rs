@@ -181,13 +181,17 @@ fn legend(img: &mut Image, top: usize, s: usize, quantity: &str, range: Option<(
         let c = ramp((x - x0) as f32 / (x1 - x0 - 1).max(1) as f32);
         fill(img, x, by0, x + 1, by1, c);
     }
-    // A tick at every half decade; labels at both ends, then at the ticks between them
-    // where a label does not touch one already placed.
+    // A tick at every half decade; labels at both ends, then at the whole decades, then at
+    // the half decades, each where it keeps a gap to the labels already placed.
     let n = ((hi - lo) * 2.0).round() as usize;
     let ticks: Vec<f32> = (0..=n).map(|i| lo + 0.5 * i as f32).collect();
     let xof = |d: f32| (x0 as f32 + (d - lo) / (hi - lo) * (x1 - x0 - 1) as f32).round() as usize;
     let mut placed: Vec<(usize, usize)> = Vec::new();
-    let order = [0, n].into_iter().chain(1..n);
+    let whole = |i: &usize| (ticks[*i] - ticks[*i].floor()) < 0.25;
+    let order = [0, n]
+        .into_iter()
+        .chain((1..n).filter(whole))
+        .chain((1..n).filter(|i| !whole(i)));
     for i in order {
         let d = ticks[i];
         let x = xof(d);
@@ -195,7 +199,7 @@ fn legend(img: &mut Image, top: usize, s: usize, quantity: &str, range: Option<(
         let label = decade_label(d);
         let lw = text_width(&label, s);
         let lx = x.saturating_sub(lw / 2).min(w.saturating_sub(lw));
-        let span = (lx, lx + lw + 2 * s);
+        let span = (lx.saturating_sub(4 * s), lx + lw + 4 * s);
         if placed.iter().all(|p| span.1 <= p.0 || span.0 >= p.1) {
             placed.push(span);
             text(img, lx, by1 + 3 * s, s, &label, white);
