@@ -6,11 +6,12 @@ use std::path::PathBuf;
 /// Errors raised while loading scenes and writing images.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
-    #[error("cannot read {path}: {source}")]
+    /// The OS's reason is part of the message and not also returned by `source()`, so
+    /// that a printed chain (anyhow's `{:#}`) says it once.
+    #[error("cannot read {path}: {reason}")]
     Io {
         path: PathBuf,
-        #[source]
-        source: std::io::Error,
+        reason: std::io::Error,
     },
     #[error("{path}:{line}:{column}: {message}")]
     Syntax {

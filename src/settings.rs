@@ -63,6 +63,9 @@ pub struct RenderSettings {
     /// (Mitsuba's `rr_depth`).
     pub rr_depth: u32,
     pub seed: u64,
+    /// Exposure of the PNG preview in stops (`--exposure` overrides it): a dim scene such as
+    /// door sets it so that its first picture is not black.
+    pub exposure: f32,
 }
 
 impl Default for RenderSettings {
@@ -75,6 +78,7 @@ impl Default for RenderSettings {
             max_depth: 8,
             rr_depth: 5,
             seed: 0,
+            exposure: 0.0,
         }
     }
 }
@@ -97,6 +101,12 @@ impl RenderSettings {
             return e(
                 "rr_depth",
                 format!("must be in 1..=1024, got {}", self.rr_depth),
+            );
+        }
+        if !self.exposure.is_finite() {
+            return e(
+                "exposure",
+                format!("must be a finite number of stops, got {}", self.exposure),
             );
         }
         if self.max_depth == 0 || self.max_depth > 1024 {

@@ -23,7 +23,8 @@ fn scene(body: &str) -> String {
     format!("{CAMERA}[render]\nspp = 1\n[[mesh]]\nfile = \"q.obj\"\n{body}")
 }
 
-/// Runs `footprint render` and returns (success, stderr).
+/// Runs `footprint render` and returns (success, stderr). A failure must exit with status 1
+/// (as the README says), whether the argument parser or the renderer found the bad input.
 fn render(dir: &Path, scene_file: &str, extra: &[&str]) -> (bool, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_footprint"))
         .arg("render")
@@ -35,6 +36,9 @@ fn render(dir: &Path, scene_file: &str, extra: &[&str]) -> (bool, String) {
         .expect("the binary runs");
     let stderr = String::from_utf8_lossy(&out.stderr).to_string();
     assert!(!stderr.contains("panicked"), "panic: {stderr}");
+    if !out.status.success() {
+        assert_eq!(out.status.code(), Some(1), "exit status of: {stderr}");
+    }
     (out.status.success(), stderr)
 }
 
@@ -137,6 +141,11 @@ fn toml_syntax_errors_and_unknown_keys_name_the_line() {
         &["render.spp"],
     );
     run(
+        "nan-exposure",
+        scene("").replace("spp = 1", "spp = 1\nexposure = nan"),
+        &["render.exposure"],
+    );
+    run(
         "bad-scale",
         scene("transform = { scale = 0.0 }\n"),
         &["mesh[0].transform.scale"],
@@ -229,6 +238,58 @@ fn bad_flags() {
     expect_error("flag-spp", &files, &["--spp", "0"], &["spp"]);
     expect_error("flag-time", &files, &["--time", "-3"], &["time"]);
     expect_error("flag-unknown", &files, &["--frobnicate"], &["frobnicate"]);
+    expect_error(
+        "flag-resolution",
+        &files,
+        &["--resolution", "0x10"],
+        &["resolution", "0x10"],
+    );
+    expect_error("flag-threads", &files, &["--threads", "0"], &["threads"]);
+}
+
+/// `--help` is not an error: it prints to stdout and exits with 0.
+#[test]
+fn help_exits_with_zero() {
+    for args in [&["--help"][..], &["render", "--help"], &["maps", "--help"]] {
+        let out = Command::new(env!("CARGO_BIN_EXE_footprint"))
+            .args(args)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(0), "{args:?}");
+        assert!(String::from_utf8_lossy(&out.stdout).contains("Usage"));
+    }
+}
+
+/// The operating system's reason is said once, not repeated by the error chain.
+#[test]
+fn io_errors_say_the_reason_once() {
+    let d = dir_with("io-once", &[]);
+    let (ok, err) = render(&d, "s.toml", &[]);
+    assert!(!ok);
+    assert!(
+        err.contains("cannot read") && err.contains("s.toml"),
+        "{err}"
+    );
+    assert_eq!(err.matches("os error").count(), 1, "{err}");
+    // Not UTF-8: the decoder's reason once.
+    let d = dir_with("utf8-once", &[]);
+    std::fs::write(d.join("s.toml"), b"\xff\xfe[camera]\n").unwrap();
+    let (ok, err) = render(&d, "s.toml", &[]);
+    assert!(!ok);
+    assert!(err.contains("s.toml"), "{err}");
+    assert_eq!(err.matches("valid UTF-8").count(), 1, "{err}");
+    // A missing OBJ and MTL beside a good scene file: once each.
+    expect_error("no-obj-once", &[("s.toml", &scene(""))], &[], &["q.obj"]);
+    let d = dir_with("no-obj-once2", &[("s.toml", &scene(""))]);
+    let (_, err) = render(&d, "s.toml", &[]);
+    assert_eq!(err.matches("os error").count(), 1, "{err}");
+    let d = dir_with(
+        "no-mtl-once",
+        &[("q.obj", QUAD_OBJ), ("s.toml", &scene(""))],
+    );
+    let (_, err) = render(&d, "s.toml", &[]);
+    assert!(err.contains("m.mtl"), "{err}");
+    assert!(err.matches("os error").count() <= 1, "{err}");
 }
 
 #[test]

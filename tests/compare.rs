@@ -8,7 +8,8 @@ use footprint::Rgb;
 use footprint::film::Image;
 use footprint::scene::load::load_scene;
 use footprint_integrators::compare::{
-    SPOT_FACTOR, log_log_slope, mae, reference, rel_mse, spots, time_to_reach,
+    BUDGET_TOLERANCE, Row, SPOT_FACTOR, log_log_slope, mae, missed, reference, rel_mse,
+    slope_points, spots, time_to_reach,
 };
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -46,6 +47,31 @@ fn convergence_slope_and_time_to_error() {
     assert!((log_log_slope(&pts).unwrap() + 1.0).abs() < 1e-9);
     assert!((time_to_reach(&pts, 0.5 / 80.0).unwrap() - 80.0).abs() < 1e-6);
     assert!(log_log_slope(&pts[..1]).is_none());
+    // Rungs that rendered the same number of passes are one point: a method that did one
+    // pass at every rung (its maps took longer than the budgets) has no slope, not 0.
+    let row = |t: f64, seconds: f64, spp: u32, e: f64| Row {
+        method: "m".into(),
+        time_budget: t,
+        seconds,
+        map_seconds: 2.0,
+        tracing_seconds: seconds - 2.0,
+        spp,
+        rel_mse: e,
+        mae: e,
+        spots: 0,
+        budget_missed: missed(seconds, 2.0, t),
+    };
+    let same: Vec<Row> = [0.25, 0.5, 1.0, 2.0]
+        .iter()
+        .map(|&t| row(t, 2.2 + t / 100.0, 1, 3.0))
+        .collect();
+    assert_eq!(slope_points(&same, "m").len(), 1);
+    assert!(log_log_slope(&slope_points(&same, "m")).is_none());
+    let mut grown = same.clone();
+    grown[3] = row(2.0, 2.3, 4, 0.75);
+    let pts = slope_points(&grown, "m");
+    assert_eq!(pts.len(), 2);
+    assert!(log_log_slope(&pts).unwrap() < 0.0);
 }
 
 /// A copy of the cornell scene in a fresh folder (the cache must not land in the repository).
@@ -84,7 +110,8 @@ fn a_stale_reference_cache_is_rendered_again() {
     assert!(how.starts_with("cached"), "{how}");
 }
 
-fn run_compare(out: &Path) {
+/// Runs a short comparison into `out`; returns its stderr.
+fn run_compare(out: &Path) -> String {
     let path = cornell_copy("run");
     let status = Command::new(env!("CARGO_BIN_EXE_footprint"))
         .args(["compare"])
@@ -93,7 +120,7 @@ fn run_compare(out: &Path) {
             "--time",
             "0.4",
             "--ladder",
-            "0.2,0.4",
+            "0.001,0.4",
             "--resolution",
             "32x24",
             "--reference-spp",
@@ -112,18 +139,24 @@ fn run_compare(out: &Path) {
         "{}",
         String::from_utf8_lossy(&status.stderr)
     );
-    let err = String::from_utf8_lossy(&status.stderr);
+    let err = String::from_utf8_lossy(&status.stderr).to_string();
     assert!(
         err.contains("[1/14]") && err.contains("[14/14]"),
         "progress lines: {err}"
     );
+    // The reference render shows its progress too.
+    assert!(
+        err.contains("reference: ") && err.contains("s left"),
+        "reference progress: {err}"
+    );
+    err
 }
 
 #[test]
 fn a_short_compare_writes_every_file_with_one_row_per_method() {
     let out = std::env::temp_dir().join(format!("footprint-compare-{}-out", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
-    run_compare(&out);
+    let err = run_compare(&out);
     let methods = [
         "pt-bsdf",
         "pt-grid",
@@ -150,7 +183,7 @@ fn a_short_compare_writes_every_file_with_one_row_per_method() {
     }
     let csv = std::fs::read_to_string(out.join("metrics.csv")).unwrap();
     for m in methods {
-        for t in ["0.2", "0.4"] {
+        for t in ["0.001", "0.4"] {
             let n = csv
                 .lines()
                 .filter(|l| l.starts_with(&format!("{m},{t},")))
@@ -158,7 +191,47 @@ fn a_short_compare_writes_every_file_with_one_row_per_method() {
             assert_eq!(n, 1, "{m} at {t} s: {n} rows");
         }
     }
+    // A budget that cannot be kept is reported, never passed off as met: 1 ms is less than
+    // any guided method's map passes, so those rows are marked and warned about, and every
+    // row is marked exactly when it took more than the budget plus the tolerance or its maps
+    // alone took longer than the budget.
+    let mut reader = csv::Reader::from_path(out.join("metrics.csv")).unwrap();
+    let header = reader.headers().unwrap().clone();
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let (c_m, c_t, c_s, c_maps, c_x) = (
+        col("method"),
+        col("time_budget_s"),
+        col("seconds"),
+        col("map_seconds"),
+        col("budget_missed"),
+    );
+    for rec in reader.records() {
+        let rec = rec.unwrap();
+        let (m, t, secs) = (
+            &rec[c_m],
+            rec[c_t].parse::<f64>().unwrap(),
+            rec[c_s].parse::<f64>().unwrap(),
+        );
+        let maps = rec[c_maps].parse::<f64>().unwrap();
+        let marked = &rec[c_x] == "true";
+        assert_eq!(
+            marked,
+            secs > t * (1.0 + BUDGET_TOLERANCE) || maps > t,
+            "{m} at {t}"
+        );
+        assert_eq!(marked, missed(secs, maps, t));
+        if t == 0.001 && !m.ends_with("-bsdf") {
+            assert!(marked, "{m}: maps in 1 ms?");
+            assert!(
+                err.contains(&format!("warning: {m} cannot keep the 0.001 s budget")),
+                "{m}: no warning in {err}"
+            );
+        }
+    }
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.contains("missed their budget") && html.contains("class=\"missed\""));
     let json = std::fs::read_to_string(out.join("metrics.json")).unwrap();
+    assert!(json.contains("\"budget_missed\": true"));
     assert_eq!(json.matches("\"rel_mse\"").count(), 14);
     let svg = std::fs::read_to_string(out.join("convergence.svg")).unwrap();
     assert_eq!(svg.matches("class=\"method\"").count(), 7);
@@ -177,8 +250,9 @@ fn a_short_compare_writes_every_file_with_one_row_per_method() {
             std::env::var_os("CI").is_none(),
             "Chromium is missing on CI: .ci/run installs it"
         );
-        eprintln!(
-            "\n*** SKIPPED: the headless Chromium check of index.html (no chromium on this machine; .ci/run installs it) ***\n"
+        common::skip(
+            "a_short_compare_writes_every_file_with_one_row_per_method",
+            "the headless Chromium check of index.html (no chromium on this machine; .ci/run installs it)",
         );
         return;
     };

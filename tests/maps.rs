@@ -1,7 +1,7 @@
 //! Particle maps: the k-nearest query against brute force (exclusion rules included), the
 //! memory per particle, flux conservation of the light pass, photon and importon density
 //! estimates against independent estimates, colour-filtered importance behind glass, spot
-//! emission sampling, and bad map settings.
+//! emission sampling, bad map settings, and the pictures of `footprint maps`.
 
 mod common;
 
@@ -19,6 +19,7 @@ use footprint::scene::Scene;
 use footprint::scene::geometry::offset_ray_origin;
 use footprint::scene::load::load_scene;
 use footprint_integrators::integrator::path_tracing::radiance_along;
+use footprint_integrators::map_picture::{PICTURE_K, density_picture};
 use footprint_integrators::passes::{PassSettings, light_pass, view_pass};
 use glam::Vec3;
 use std::path::PathBuf;
@@ -566,4 +567,48 @@ fn the_back_of_a_wall_is_ruled_out_without_a_search() {
     assert_eq!(map.query(x, -Vec3::X, 50, 0.2, |_| 1.0, &mut out), 0);
     assert!(map.may_hold(x, Vec3::X, 50, 0.2));
     assert_eq!(map.query(x, Vec3::X, 50, 0.2, |_| 1.0, &mut out), 50);
+}
+
+/// `footprint maps`' pictures show where the particles are: with every photon of cornell the
+/// whole visible surface has a density estimate; with only the photons of the box's left half
+/// (x > 2.78, image left) the right half is the grey of "none" and the left half is coloured,
+/// and a legend strip lies below the image.
+#[test]
+fn map_pictures_show_where_the_particles_are() {
+    let mut scene = load_scene(&scene_path("cornell")).unwrap();
+    let (w, h) = (64u32, 48u32);
+    scene.camera = scene.camera.with_resolution(w, h).unwrap();
+    let out = light_pass(&scene, &pass_settings(20_000, 5), &GuidedSampler::bsdf());
+    let full = ParticleMap::build(MapKind::Photons, &out.particles);
+    let pic = density_picture(&scene, &full, PICTURE_K);
+    assert_eq!(pic.image.width, w);
+    assert!(pic.image.height > h, "no legend strip");
+    assert!(pic.covered > 0.95, "covered {}", pic.covered);
+    let (lo, hi) = pic.range.unwrap();
+    assert!(lo > 0.0 && hi > lo);
+    let left: Vec<ParticleInput> = out
+        .particles
+        .iter()
+        .filter(|p| p.position.x > 2.78)
+        .cloned()
+        .collect();
+    let half = ParticleMap::build(MapKind::Photons, &left);
+    let pic = density_picture(&scene, &half, PICTURE_K);
+    assert!(
+        pic.covered > 0.25 && pic.covered < 0.75,
+        "covered {}",
+        pic.covered
+    );
+    // "None" is a grey (a black pixel would be no surface at all).
+    let grey = |x: u32, y: u32| {
+        let p = pic.image.get(x, y);
+        p.x == p.y && p.y == p.z && p.x > 0.0
+    };
+    for y in [h / 3, h / 2, 2 * h / 3] {
+        assert!(!grey(w / 6, y), "left, row {y}: no estimate");
+        assert!(
+            grey(w - w / 6, y),
+            "right, row {y}: an estimate without particles"
+        );
+    }
 }

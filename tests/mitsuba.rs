@@ -268,9 +268,12 @@ fn cornell_light_tracing_matches_mitsuba() {
 fn public_scenes_import_and_render() {
     let ext = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/scenes-ext");
     if !ext.is_dir() {
-        eprintln!(
-            "SKIPPED public_scenes_import_and_render: {} is absent (the public scenes live beside the repository, not in it)",
-            ext.display()
+        common::skip(
+            "public_scenes_import_and_render",
+            &format!(
+                "{} is absent (the public scenes live beside the repository, not in it)",
+                ext.display()
+            ),
         );
         return;
     }

@@ -12,7 +12,7 @@
 //!   [`SPOT_FACTOR`] times the reference luminance plus 1% of the reference's mean.
 
 use crate::method::Method;
-use crate::render::{RenderOptions, render};
+use crate::render::{RenderOptions, StopRule, guidance, render, render_prepared};
 use anyhow::{Context, Result, bail};
 use footprint::film::Image;
 use footprint::film::image_io::{read_exr, write_exr, write_png};
@@ -21,9 +21,19 @@ use footprint::scene::Scene;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+/// A run missed its budget when it took more than this fraction longer than the budget, or
+/// when its map passes alone took longer than the budget (a guided method at a small rung).
+pub const BUDGET_TOLERANCE: f64 = 0.1;
+
 /// A pixel is a spot when its luminance error exceeds this multiple of the reference
 /// luminance (plus 1% of the reference mean).
 pub const SPOT_FACTOR: f32 = 4.0;
+
+/// Whether a run of `seconds`, `map_seconds` of them building maps, missed budget `t`: it
+/// took more than [`BUDGET_TOLERANCE`] longer, or its maps alone took longer than `t`.
+pub fn missed(seconds: f64, map_seconds: f64, t: f64) -> bool {
+    seconds > t * (1.0 + BUDGET_TOLERANCE) || map_seconds > t
+}
 
 /// Relative MSE (see the module doc).
 pub fn rel_mse(x: &Image, r: &Image) -> f64 {
@@ -97,6 +107,9 @@ pub struct Row {
     pub rel_mse: f64,
     pub mae: f64,
     pub spots: usize,
+    /// The run took more than the budget (plus [`BUDGET_TOLERANCE`]): its error is not an
+    /// equal-time error.
+    pub budget_missed: bool,
 }
 
 /// A short text that identifies what a reference was rendered from: the scene files'
@@ -178,7 +191,21 @@ pub fn reference(
         seed: 0x5eed,
         ..Default::default()
     };
-    let r = render(scene, &opts, |_| {});
+    // Progress: a line at every tenth of the passes, with the time left measured so far.
+    let t0 = std::time::Instant::now();
+    let mut shown = 0;
+    let r = render(scene, &opts, |f| {
+        let tenth = (f * 10.0).floor() as i32;
+        if tenth > shown && f < 1.0 {
+            shown = tenth;
+            let el = t0.elapsed().as_secs_f64();
+            log(&format!(
+                "reference: {:.0}% of {spp} spp in {el:.0} s, about {:.0} s left",
+                100.0 * f,
+                el * (1.0 - f) / f
+            ));
+        }
+    });
     write_exr(
         &cache,
         &[("combined", &r.image)],
@@ -213,6 +240,22 @@ pub fn log_log_slope(points: &[(f64, f64)]) -> Option<f64> {
     let sxx: f64 = pts.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
     let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
     (sxx > 0.0).then(|| sxy / sxx)
+}
+
+/// A method's (seconds, relative MSE) points for the slope: one per distinct sample count
+/// (rungs that rendered the same number of passes are the same image, and a slope through
+/// them would be 0), the fastest of each.
+pub fn slope_points(rows: &[Row], method: &str) -> Vec<(f64, f64)> {
+    let mut pts: Vec<(u32, f64, f64)> = Vec::new();
+    for r in rows.iter().filter(|r| r.method == method) {
+        match pts.iter_mut().find(|p| p.0 == r.spp) {
+            Some(p) if p.1 <= r.seconds => {}
+            Some(p) => *p = (r.spp, r.seconds, r.rel_mse),
+            None => pts.push((r.spp, r.seconds, r.rel_mse)),
+        }
+    }
+    pts.sort_by(|a, b| a.1.total_cmp(&b.1));
+    pts.into_iter().map(|(_, t, e)| (t, e)).collect()
 }
 
 /// Time a method needs to reach `target` error, on its log-log line through the last point
@@ -273,6 +316,8 @@ fn json(
         "scene": scene,
         "reference": reference,
         "spot_factor": SPOT_FACTOR,
+        "budget_tolerance": BUDGET_TOLERANCE,
+        "budgets_missed": rows.iter().filter(|r| r.budget_missed).count(),
         "target_rel_mse": target,
         "rows": rows,
         "methods": summary,
@@ -360,25 +405,33 @@ pub fn convergence_svg(rows: &[Row], methods: &[String]) -> String {
     );
     for (i, m) in methods.iter().enumerate() {
         let c = colours[i % colours.len()];
-        let line: Vec<String> = rows
+        let pts: Vec<(f64, f64, bool)> = rows
             .iter()
             .filter(|r| &r.method == m && r.rel_mse > 0.0)
             .map(|r| {
-                format!(
-                    "{:.1},{:.1}",
+                (
                     px(r.seconds.max(1e-3).log10()),
-                    py(r.rel_mse.log10())
+                    py(r.rel_mse.log10()),
+                    r.budget_missed,
                 )
             })
+            .collect();
+        let line: Vec<String> = pts
+            .iter()
+            .map(|p| format!("{:.1},{:.1}", p.0, p.1))
             .collect();
         let _ = writeln!(
             s,
             "<polyline class=\"method\" fill=\"none\" stroke=\"{c}\" stroke-width=\"2\" points=\"{}\"/>",
             line.join(" ")
         );
-        for p in &line {
-            let (x, y) = p.split_once(',').unwrap();
-            let _ = writeln!(s, "<circle cx=\"{x}\" cy=\"{y}\" r=\"3\" fill=\"{c}\"/>");
+        // A run that missed its budget is a hollow point.
+        for &(x, y, missed) in &pts {
+            let fill = if missed { "white" } else { c };
+            let _ = writeln!(
+                s,
+                "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"3.5\" fill=\"{fill}\" stroke=\"{c}\" stroke-width=\"1.5\"/>"
+            );
         }
         let _ = writeln!(
             s,
@@ -387,6 +440,17 @@ pub fn convergence_svg(rows: &[Row], methods: &[String]) -> String {
             t + 10.0 + 18.0 * i as f64,
             w - rgt + 34.0,
             t + 15.0 + 18.0 * i as f64
+        );
+    }
+    if rows.iter().any(|r| r.budget_missed) {
+        let y = t + 15.0 + 18.0 * methods.len() as f64 + 8.0;
+        let _ = writeln!(
+            s,
+            "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"3.5\" fill=\"white\" stroke=\"#444\" stroke-width=\"1.5\"/><text x=\"{:.1}\" y=\"{:.1}\">budget missed</text>",
+            w - rgt + 22.0,
+            y - 4.0,
+            w - rgt + 34.0,
+            y
         );
     }
     s += "</svg>\n";
@@ -420,38 +484,86 @@ pub fn run(
     let exposure = preview_exposure(&reference);
     write_png(&s.out.join("reference.png"), &reference, exposure)?;
     let total_runs = s.variants.len() * s.ladder.len();
-    let budget: f64 = s.ladder.iter().sum::<f64>() * s.variants.len() as f64;
-    let mut spent = 0.0;
+    let ladder_sum: f64 = s.ladder.iter().sum();
+    // Wall-clock time of the runs so far and the budgets they were given: the time left is
+    // the remaining budgets scaled by what the runs so far really took.
+    let (mut wall, mut budgets_done) = (0.0f64, 0.0f64);
     let mut rows = Vec::new();
     let scene_maps = scene.maps.clone();
     for (mi, v) in s.variants.iter().enumerate() {
         scene.maps = v.maps.clone();
+        let opts = RenderOptions {
+            time: None,
+            seed: s.seed,
+            max_depth,
+            ..v.opts.clone()
+        };
+        // The maps and caches once per method; their time is charged to every rung, as a
+        // render of that budget would spend it.
+        let left = |wall: f64, done: f64| {
+            let remaining = ladder_sum * s.variants.len() as f64 - done;
+            if done > 0.0 {
+                format!("about {:.0} s left", remaining * wall / done)
+            } else {
+                format!("at least {remaining:.0} s left")
+            }
+        };
+        let g0 = std::time::Instant::now();
+        let g = guidance(scene, &opts, &|| None);
+        let maps = g.timings.total();
+        if v.opts.method.guided() {
+            log(&format!(
+                "[{}/{total_runs}] {}: maps and caches built in {:.2} s, charged to every rung",
+                mi * s.ladder.len() + 1,
+                v.label,
+                maps.as_secs_f64()
+            ));
+        }
+        wall += g0.elapsed().as_secs_f64();
         for (li, &t) in s.ladder.iter().enumerate() {
             let run_index = mi * s.ladder.len() + li + 1;
             log(&format!(
-                "[{run_index}/{total_runs}] {} for {t} s (about {:.0} s left)",
+                "[{run_index}/{total_runs}] {} for {t} s ({})",
                 v.label,
-                budget - spent
+                left(wall, budgets_done)
             ));
             let opts = RenderOptions {
                 time: Some(t),
-                seed: s.seed,
-                max_depth,
-                ..v.opts.clone()
+                ..opts.clone()
             };
-            let r = render(scene, &opts, |_| {});
-            spent += t;
+            let r0 = std::time::Instant::now();
+            let r = render_prepared(scene, &opts, &g, maps, StopRule::WithinBudget, |_| {});
+            wall += r0.elapsed().as_secs_f64();
+            budgets_done += t;
             let tm = &r.timings;
+            let seconds = r.elapsed.as_secs_f64();
+            let budget_missed = missed(seconds, maps.as_secs_f64(), t);
+            if budget_missed {
+                let why = if maps.as_secs_f64() >= t {
+                    format!("its maps alone take {:.2} s", maps.as_secs_f64())
+                } else {
+                    format!(
+                        "maps {:.2} s plus one pass {:.2} s",
+                        maps.as_secs_f64(),
+                        tm.tracing.as_secs_f64() / r.passes.max(1) as f64
+                    )
+                };
+                log(&format!(
+                    "warning: {} cannot keep the {t} s budget ({why}): it took {seconds:.2} s for {} spp; the row is marked budget_missed",
+                    v.label, r.passes
+                ));
+            }
             rows.push(Row {
                 method: v.label.clone(),
                 time_budget: t,
-                seconds: r.elapsed.as_secs_f64(),
+                seconds,
                 map_seconds: tm.maps.total().as_secs_f64(),
                 tracing_seconds: tm.tracing.as_secs_f64(),
                 spp: r.passes,
                 rel_mse: rel_mse(&r.image, &reference),
                 mae: mae(&r.image, &reference),
                 spots: spots(&r.image, &reference),
+                budget_missed,
             });
             if li + 1 == s.ladder.len() {
                 write_png(&s.out.join(format!("{}.png", v.label)), &r.image, exposure)?;
@@ -465,10 +577,15 @@ pub fn run(
     }
     scene.maps = scene_maps;
     let names: Vec<String> = s.variants.iter().map(|v| v.label.clone()).collect();
-    // Slopes, and the time each method needs to reach the median of the equal-time errors.
+    // Slopes, and the time each method needs to reach the median of the equal-time errors
+    // (of the runs that kept the budget, if any did).
+    let last = *s.ladder.last().unwrap();
+    let kept = rows
+        .iter()
+        .any(|r| r.time_budget == last && !r.budget_missed);
     let mut finals: Vec<f64> = rows
         .iter()
-        .filter(|r| r.time_budget == *s.ladder.last().unwrap())
+        .filter(|r| r.time_budget == last && (!kept || !r.budget_missed))
         .map(|r| r.rel_mse)
         .collect();
     finals.sort_by(|a, b| a.total_cmp(b));
@@ -476,11 +593,7 @@ pub fn run(
     let summary: Vec<MethodSummary> = names
         .iter()
         .map(|m| {
-            let pts: Vec<(f64, f64)> = rows
-                .iter()
-                .filter(|r| &r.method == m)
-                .map(|r| (r.seconds, r.rel_mse))
-                .collect();
+            let pts = slope_points(&rows, m);
             MethodSummary {
                 method: m.clone(),
                 slope: log_log_slope(&pts),
@@ -519,6 +632,25 @@ pub fn run(
     Ok(rows)
 }
 
+fn missed_class(r: &Row) -> &'static str {
+    if r.budget_missed {
+        " class=\"missed\""
+    } else {
+        ""
+    }
+}
+
+fn budget_cell(r: &Row) -> String {
+    if r.budget_missed {
+        format!(
+            "<span class=\"warn\">missed ({:.2} s for {} s)</span>",
+            r.seconds, r.time_budget
+        )
+    } else {
+        "kept".into()
+    }
+}
+
 #[allow(clippy::too_many_arguments)]
 fn html(
     scene_path: &Path,
@@ -550,12 +682,21 @@ fn html(
     let mut out = String::new();
     let _ = write!(
         out,
-        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>footprint compare: {scene}</title>\n<style>\nbody {{ font-family: sans-serif; margin: 20px; }}\n.grid {{ display: flex; flex-wrap: wrap; gap: 16px; }}\n.cell {{ text-align: center; }}\n.crop {{ position: relative; overflow: hidden; border: 1px solid #888; }}\n.crop img {{ position: absolute; image-rendering: pixelated; }}\nimg.full {{ width: {w2}px; image-rendering: pixelated; }}\ntable {{ border-collapse: collapse; }} td, th {{ border: 1px solid #ccc; padding: 3px 8px; text-align: right; }}\n</style></head><body>\n<h1>{scene}</h1>\n<p>Every method for {t_eq} s of wall-clock time, passes that build the particle maps included; reference: {refsrc}. Relative MSE = mean of (X - R)² / (R² + 0.01) after dividing by the reference mean; spots = pixels whose luminance error exceeds {SPOT_FACTOR} x the reference (+1% of its mean). Crops: the centre quarter, {zoom}x.</p>\n",
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>footprint compare: {scene}</title>\n<style>\nbody {{ font-family: sans-serif; margin: 20px; }}\n.grid {{ display: flex; flex-wrap: wrap; gap: 16px; }}\n.cell {{ text-align: center; }}\n.crop {{ position: relative; overflow: hidden; border: 1px solid #888; }}\n.crop img {{ position: absolute; image-rendering: pixelated; }}\nimg.full {{ width: {w2}px; image-rendering: pixelated; }}\ntable {{ border-collapse: collapse; }} td, th {{ border: 1px solid #ccc; padding: 3px 8px; text-align: right; white-space: nowrap; }}\ntr.missed td {{ background: #fde0dc; }}\n.warn {{ color: #b00; font-weight: bold; }}\n</style></head><body>\n<h1>{scene}</h1>\n<p>Every method for {t_eq} s of wall-clock time, passes that build the particle maps included (built once per method and charged to every rung); reference: {refsrc}. Relative MSE = mean of (X - R)² / (R² + 0.01) after dividing by the reference mean; spots = pixels whose luminance error exceeds {SPOT_FACTOR} x the reference (+1% of its mean). Crops: the centre quarter, {zoom}x.</p>\n",
         scene = scene_path.display(),
         w2 = w.max(256),
         refsrc = ref_source
     );
-    out += "<h2>Equal time</h2>\n<table><tr><th>method</th><th>spp</th><th>seconds</th><th>maps (s)</th><th>relative MSE</th><th>MAE</th><th>spots</th><th>slope</th><th>time to reach target (s)</th></tr>\n";
+    let missed = rows.iter().filter(|r| r.budget_missed).count();
+    if missed > 0 {
+        let _ = writeln!(
+            out,
+            "<p class=\"warn\">{missed} of {} runs missed their budget (took more than {:.0}% longer, or their maps alone took longer; marked in red below and as budget_missed in metrics.csv and metrics.json): their errors are not equal-time errors.</p>",
+            rows.len(),
+            100.0 * BUDGET_TOLERANCE
+        );
+    }
+    out += "<h2>Equal time</h2>\n<table><tr><th>method</th><th>spp</th><th>seconds</th><th>maps (s)</th><th>relative MSE</th><th>MAE</th><th>spots</th><th>slope</th><th>time to reach target (s)</th><th>budget</th></tr>\n";
     for MethodSummary {
         method: m,
         slope,
@@ -574,7 +715,8 @@ fn html(
             };
             let _ = writeln!(
                 out,
-                "<tr><td style=\"text-align:left\">{m}</td><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{:.4e}</td><td>{:.4e}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                "<tr{}><td style=\"text-align:left\">{m}</td><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{:.4e}</td><td>{:.4e}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                missed_class(r),
                 r.spp,
                 r.seconds,
                 r.map_seconds,
@@ -582,14 +724,34 @@ fn html(
                 r.mae,
                 r.spots,
                 f(slope),
-                f(tt)
+                f(tt),
+                budget_cell(r)
             );
         }
     }
     let _ = writeln!(
         out,
-        "</table>\n<p>Target error for the last column: {target:.4e} (the median equal-time relative MSE).</p>"
+        "</table>\n<p>Target error for the last column: {target:.4e} (the median equal-time relative MSE). Slope: of log error against log time over the rungs with different sample counts (- when fewer than two).</p>"
     );
+    out += "<h2>Every rung</h2>\n<table><tr><th>method</th><th>budget (s)</th><th>seconds</th><th>maps (s)</th><th>tracing (s)</th><th>spp</th><th>relative MSE</th><th>MAE</th><th>spots</th><th>budget</th></tr>\n";
+    for r in rows {
+        let _ = writeln!(
+            out,
+            "<tr{}><td style=\"text-align:left\">{}</td><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{:.2}</td><td>{}</td><td>{:.4e}</td><td>{:.4e}</td><td>{}</td><td>{}</td></tr>",
+            missed_class(r),
+            r.method,
+            r.time_budget,
+            r.seconds,
+            r.map_seconds,
+            r.tracing_seconds,
+            r.spp,
+            r.rel_mse,
+            r.mae,
+            r.spots,
+            budget_cell(r)
+        );
+    }
+    out += "</table>\n";
     out += "<h2>Error against time</h2>\n<img src=\"convergence.svg\" alt=\"convergence plot\">\n<h2>Images</h2>\n<div class=\"grid\">\n";
     let _ = writeln!(
         out,

@@ -7,7 +7,8 @@
 //! * [`emit`]: where light paths start (light choice, guided emission at area lights);
 //! * [`mis`]: the combined image's weights, kept as running quantities per subpath;
 //! * [`passes`]: the light pass (photon map) and the view pass (importance map);
-//! * [`maps`]: building the maps and guide caches a method needs, and pictures of the maps;
+//! * [`maps`]: building the maps and guide caches a method needs;
+//! * [`map_picture`]: pictures of the maps (a density estimate per pixel, log scale, legend);
 //! * [`maps_file`]: saved maps (the passes' particles), versioned and checksummed;
 //! * [`merge`]: the image of one run from its shards' images;
 //! * [`method`]: a method (integrator x guide), resolved from names in one place;
@@ -19,6 +20,7 @@
 pub mod compare;
 pub mod emit;
 pub mod integrator;
+pub mod map_picture;
 pub mod maps;
 pub mod maps_file;
 pub mod merge;
@@ -31,5 +33,8 @@ pub mod shard;
 pub mod walk;
 
 pub use method::Method;
-pub use render::{RenderOptions, RenderResult, render, render_guided, render_with};
+pub use render::{
+    RenderOptions, RenderResult, StopRule, guidance, render, render_guided, render_prepared,
+    render_with,
+};
 pub use shard::PassSelection;

@@ -33,7 +33,7 @@ fn heap_bytes() -> Option<usize> {
     about = "A physically based CPU renderer that guides light and view paths with particle maps",
     long_about = "footprint renders scenes described in TOML (see README.md, \"Scene format\") or \
                   Mitsuba 3 XML (docs/mitsuba.md) with path tracing, light tracing or both, guided \
-                  by particle maps.\n\nExamples:\n  footprint render scenes/door/door.toml --spp 64\n  \
+                  by particle maps.\n\nExamples:\n  footprint render scenes/desk/desk.toml\n  \
                   footprint render scene.xml -D resx=128 -D resy=72"
 )]
 struct Cli {
@@ -173,9 +173,10 @@ enum Command {
         /// [default: <scene name>.exr in the current directory]
         #[arg(long, short)]
         out: Option<PathBuf>,
-        /// Exposure of the PNG preview in stops (the preview is 2^exposure * linear, clamped, sRGB-encoded)
-        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
-        exposure: f32,
+        /// Exposure of the PNG preview in stops (the preview is 2^exposure * linear, clamped,
+        /// sRGB-encoded) [default: the scene's render.exposure, else 0]
+        #[arg(long, allow_negative_numbers = true)]
+        exposure: Option<f32>,
         /// Image size WIDTHxHEIGHT, replacing the scene's camera.resolution (same vertical field of view)
         #[arg(long, value_parser = parse_resolution)]
         resolution: Option<(u32, u32)>,
@@ -216,10 +217,21 @@ enum Command {
         exposure: f32,
     },
     /// Build the photon map and the importance map and write pictures of them seen from the camera
+    ///
+    /// Runs the light pass (photons) and the view pass (importons), builds both maps and
+    /// their guide caches (what `render --integrator combined --guide footprint` uses) and
+    /// prints for each its particles, bytes per particle, pass and build times, and the
+    /// caches' regions, memory and build time. Writes DIR/photons.png (irradiance, W/m²) and
+    /// DIR/importons.png (importance per m²): for every pixel a density estimate from the 32
+    /// nearest particles at the surface the pixel sees, on a log scale with a legend below the
+    /// image; surfaces without particles are grey.
+    ///
+    /// Example: footprint maps scenes/door/door.toml --out maps-door
     Maps {
         /// Scene file: footprint TOML (.toml) or Mitsuba 3 XML (.xml)
         scene: PathBuf,
-        /// Folder for photons.png and importons.png (created if missing)
+        /// Folder for photons.png and importons.png (created if missing; existing pictures
+        /// are replaced)
         #[arg(long, short, required_unless_present = "save")]
         out: Option<PathBuf>,
         /// Save both passes' particles (what the maps and guide caches are built from) to this
@@ -452,7 +464,15 @@ fn parse_resolution(s: &str) -> std::result::Result<(u32, u32), String> {
 }
 
 fn main() {
-    let cli = Cli::parse();
+    // Bad input exits with 1 whether the argument parser or the renderer finds it (clap's
+    // own exit code for a usage error is 2); `--help` and `--version` exit with 0.
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let _ = e.print();
+            std::process::exit(if e.use_stderr() { 1 } else { 0 });
+        }
+    };
     if let Err(e) = run(cli) {
         eprintln!("error: {e:#}");
         std::process::exit(1);
@@ -505,7 +525,7 @@ fn run(cli: Cli) -> Result<()> {
                     "--shard needs --spp, not --time: with a time budget every machine renders as many passes as its speed allows, so the shards would not add up to the samples of one run; give every shard the same --spp (the total)"
                 );
             }
-            if !exposure.is_finite() {
+            if exposure.is_some_and(|x| !x.is_finite()) {
                 bail!("--exposure must be finite");
             }
             let t0 = Instant::now();
@@ -558,6 +578,7 @@ fn run(cli: Cli) -> Result<()> {
                     .unwrap_or("render".into());
                 PathBuf::from(format!("{stem}.exr"))
             });
+            let exposure = exposure.unwrap_or(sc.settings.exposure);
             render_command(
                 &scene,
                 &sc,
@@ -687,13 +708,33 @@ fn run(cli: Cli) -> Result<()> {
             )?;
             let last = *settings.ladder.last().unwrap();
             println!(
-                "{:<28} {:>6} {:>9} {:>12} {:>12} {:>7}",
+                "{:<28} {:>6} {:>9} {:>12} {:>12} {:>7}  budget",
                 "method", "spp", "seconds", "rel. MSE", "MAE", "spots"
             );
             for r in rows.iter().filter(|r| r.time_budget == last) {
                 println!(
-                    "{:<28} {:>6} {:>9.2} {:>12.4e} {:>12.4e} {:>7}",
-                    r.method, r.spp, r.seconds, r.rel_mse, r.mae, r.spots
+                    "{:<28} {:>6} {:>9.2} {:>12.4e} {:>12.4e} {:>7}  {}",
+                    r.method,
+                    r.spp,
+                    r.seconds,
+                    r.rel_mse,
+                    r.mae,
+                    r.spots,
+                    if r.budget_missed { "MISSED" } else { "kept" }
+                );
+            }
+            let missed: Vec<String> = rows
+                .iter()
+                .filter(|r| r.budget_missed)
+                .map(|r| format!("{} at {} s ({:.2} s)", r.method, r.time_budget, r.seconds))
+                .collect();
+            if !missed.is_empty() {
+                eprintln!(
+                    "warning: {} of {} runs missed their budget (took more than {:.0}% longer, or their maps alone took longer; budget_missed in metrics.csv and metrics.json, red in index.html): {}",
+                    missed.len(),
+                    rows.len(),
+                    100.0 * footprint_integrators::compare::BUDGET_TOLERANCE,
+                    missed.join(", ")
                 );
             }
             println!(
@@ -834,7 +875,8 @@ fn maps_command(
     max_depth: Option<u32>,
     seed: Option<u64>,
 ) -> Result<()> {
-    use footprint_integrators::maps::{Guidance, picture, run_passes};
+    use footprint_integrators::map_picture::{PICTURE_K, density_picture};
+    use footprint_integrators::maps::{Guidance, run_passes};
     use footprint_integrators::passes::PassSettings;
     if let Some(out) = out {
         std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
@@ -877,8 +919,20 @@ fn maps_command(
     for (built, file) in [(&g.photons, "photons.png"), (&g.importons, "importons.png")] {
         if let Some(b) = built {
             let path = out.join(file);
-            write_png(&path, &picture(scene, &b.pass.particles), 0.0)?;
-            println!("  -> {}", path.display());
+            let pic = density_picture(scene, &b.map, PICTURE_K);
+            write_png(&path, &pic.image, 0.0)?;
+            match pic.range {
+                Some((lo, hi)) => println!(
+                    "  -> {}: {} from the {PICTURE_K} nearest particles per pixel, log scale {lo:.3e} to {hi:.3e}; particles on {:.0}% of the visible surface",
+                    path.display(),
+                    pic.quantity,
+                    100.0 * pic.covered
+                ),
+                None => println!(
+                    "  -> {}: no particle on any visible surface",
+                    path.display()
+                ),
+            }
         }
     }
     Ok(())

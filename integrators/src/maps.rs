@@ -1,5 +1,5 @@
 //! The particle maps and guide caches a method needs (and only those), built before
-//! rendering, and pictures of the maps for `footprint maps`.
+//! rendering (their pictures: [`crate::map_picture`]).
 //!
 //! A guided method needs the photon map when it traces camera paths and the importance map
 //! when it traces light paths (the paper's symmetry). With the guide cache on, each map's
@@ -8,8 +8,6 @@
 
 use crate::method::Method;
 use crate::passes::{PassOutput, PassSettings, light_pass, view_pass};
-use footprint::Rgb;
-use footprint::film::Image;
 use footprint::guide::cache::GuideCache;
 use footprint::guide::particle_map::{MapKind, ParticleInput, ParticleMap};
 use footprint::guide::sampler::{GuideSource, GuidedSampler};
@@ -364,45 +362,4 @@ fn sampler<'a>(
         params: params.clone(),
         soft_glossy_max: scene.maps.soft_glossy_max,
     }
-}
-
-/// A picture of `particles` seen from the camera: every particle visible from the camera is
-/// a point of its weight's colour, normalised so that the 99th-percentile particle is white.
-pub fn picture(scene: &Scene, particles: &[ParticleInput]) -> Image {
-    let cam = &scene.camera;
-    let mut peak: Vec<f32> = particles
-        .iter()
-        .map(|p| p.weight.max_element())
-        .filter(|v| *v > 0.0)
-        .collect();
-    let norm = if peak.is_empty() {
-        1.0
-    } else {
-        let i = ((peak.len() as f64 * 0.99) as usize).min(peak.len() - 1);
-        *peak.select_nth_unstable_by(i, |a, b| a.total_cmp(b)).1
-    };
-    let splats: Vec<(usize, Rgb)> = particles
-        .par_iter()
-        .filter_map(|p| {
-            let conn = cam.connect(p.position)?;
-            if !scene.visible_from_camera(p.position, p.normal) {
-                return None;
-            }
-            let x = (conn.raster.x as usize).min(cam.width as usize - 1);
-            let y = (conn.raster.y as usize).min(cam.height as usize - 1);
-            Some((y * cam.width as usize + x, (p.weight / norm).min(Rgb::ONE)))
-        })
-        .collect();
-    let mut img = Image::new(cam.width, cam.height);
-    let mut count = vec![0u32; img.pixels.len()];
-    for (i, c) in splats {
-        img.pixels[i] += c;
-        count[i] += 1;
-    }
-    for (p, c) in img.pixels.iter_mut().zip(count) {
-        if c > 0 {
-            *p /= c as f32;
-        }
-    }
-    img
 }

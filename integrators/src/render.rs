@@ -132,9 +132,34 @@ const DOMAIN_LIGHT: u64 = 2;
 /// Light paths per chunk (one splat list per layer each).
 const LT_CHUNK: usize = 4096;
 
+/// When a time budget ends the passes (whole passes only, at least one).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StopRule {
+    /// Stop when another pass would end more than half a pass past the budget: the time
+    /// spent is the budget to within half a pass (`render --time`).
+    HalfPass,
+    /// Stop when another pass would end past the budget (by the mean pass time so far):
+    /// the budget is never exceeded except by a first pass longer than what is left of it
+    /// (`compare`, which then reports the budget as missed).
+    WithinBudget,
+}
+
 /// Renders `scene`. `on_progress(fraction)` is called after every pass.
 pub fn render(scene: &Scene, opts: &RenderOptions, on_progress: impl FnMut(f64)) -> RenderResult {
     render_with(scene, opts, &|| None, on_progress)
+}
+
+/// The maps and guide caches `opts.method` needs (none for BSDF sampling); `heap` reports
+/// the heap bytes in use (a counting allocator) so that the summaries state each map's size.
+pub fn guidance(scene: &Scene, opts: &RenderOptions, heap: &dyn Fn() -> Option<usize>) -> Guidance {
+    let pass = PassSettings {
+        paths: 0,
+        max_depth: opts.max_depth,
+        rr_depth: opts.rr_depth,
+        seed: opts.seed,
+        soft_glossy_max: scene.maps.soft_glossy_max,
+    };
+    Guidance::build(scene, &opts.method, &opts.guide_params, &pass, heap)
 }
 
 /// [`render`], with `heap` reporting the heap bytes in use (a counting allocator) so that
@@ -147,14 +172,7 @@ pub fn render_with(
 ) -> RenderResult {
     let start = Instant::now();
     // ---- Particle maps and guide caches: only those the method uses ----
-    let pass = PassSettings {
-        paths: 0,
-        max_depth: opts.max_depth,
-        rr_depth: opts.rr_depth,
-        seed: opts.seed,
-        soft_glossy_max: scene.maps.soft_glossy_max,
-    };
-    let guidance = Guidance::build(scene, &opts.method, &opts.guide_params, &pass, heap);
+    let guidance = guidance(scene, opts, heap);
     render_guided(scene, opts, &guidance, start, on_progress)
 }
 
@@ -166,6 +184,48 @@ pub fn render_guided(
     opts: &RenderOptions,
     guidance: &Guidance,
     start: Instant,
+    on_progress: impl FnMut(f64),
+) -> RenderResult {
+    trace(
+        scene,
+        opts,
+        guidance,
+        start,
+        Duration::ZERO,
+        StopRule::HalfPass,
+        on_progress,
+    )
+}
+
+/// Renders with maps and caches built beforehand ([`guidance`]), so that several renders
+/// (`compare`'s ladder) can share them. The time budget counts from this call plus
+/// `charged` (time spent before it that the budget includes, e.g. the maps' build).
+pub fn render_prepared(
+    scene: &Scene,
+    opts: &RenderOptions,
+    guidance: &Guidance,
+    charged: Duration,
+    rule: StopRule,
+    on_progress: impl FnMut(f64),
+) -> RenderResult {
+    trace(
+        scene,
+        opts,
+        guidance,
+        Instant::now(),
+        charged,
+        rule,
+        on_progress,
+    )
+}
+
+fn trace(
+    scene: &Scene,
+    opts: &RenderOptions,
+    guidance: &Guidance,
+    start: Instant,
+    charged: Duration,
+    rule: StopRule,
     mut on_progress: impl FnMut(f64),
 ) -> RenderResult {
     let cam = &scene.camera;
@@ -173,6 +233,7 @@ pub fn render_guided(
     let integrator = opts.method.integrator;
     let paths = integrator.paths();
     let layers = integrator.layers();
+    let elapsed_since = |start: Instant| (charged + start.elapsed()).as_secs_f64();
     let ctx = Context {
         scene,
         max_depth: opts.max_depth,
@@ -198,7 +259,8 @@ pub fn render_guided(
         opts.passes,
         opts.spp
     );
-    let mut last_pass_end = start.elapsed().as_secs_f64();
+    let mut last_pass_end = elapsed_since(start);
+    let first_pass_start = last_pass_end;
     loop {
         // The stream index of this pass (a shard draws every `count`-th pass).
         let k = opts.passes.pass(passes) as u64;
@@ -282,14 +344,21 @@ pub fn render_guided(
             }
         }
         passes += 1;
-        let elapsed = start.elapsed().as_secs_f64();
+        let elapsed = elapsed_since(start);
         let pass_time = elapsed - last_pass_end;
         last_pass_end = elapsed;
-        let (fraction, done) = match opts.time {
+        let (fraction, done) = match (opts.time, rule) {
             // Whole passes only: stop when another one would end more than half a pass past
             // the budget, so that the time spent is the budget to within half a pass.
-            Some(t) => ((elapsed / t).min(1.0), elapsed + 0.5 * pass_time >= t),
-            None => (passes as f64 / budget as f64, passes >= budget),
+            (Some(t), StopRule::HalfPass) => {
+                ((elapsed / t).min(1.0), elapsed + 0.5 * pass_time >= t)
+            }
+            // Or when another pass, as long as the mean one so far, would end past it.
+            (Some(t), StopRule::WithinBudget) => {
+                let mean_pass = (elapsed - first_pass_start) / passes as f64;
+                ((elapsed / t).min(1.0), elapsed + mean_pass > t)
+            }
+            (None, _) => (passes as f64 / budget as f64, passes >= budget),
         };
         on_progress(fraction);
         if done {
@@ -310,7 +379,7 @@ pub fn render_guided(
         })
         .collect();
     let total_paths = passes as u64 * npix as u64 * (paths.camera as u64 + paths.light as u64);
-    let elapsed = start.elapsed();
+    let elapsed = charged + start.elapsed();
     RenderResult {
         image: layer_images[0].1.clone(),
         layers: layer_images,

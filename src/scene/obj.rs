@@ -20,9 +20,9 @@ pub fn is_degenerate(geom: &TriangleGeom) -> bool {
 /// An OBJ file's text, checked for vertex coordinates that are not finite numbers (which
 /// tobj would read as NaN).
 pub fn read_obj_text(obj_path: &Path) -> Result<String> {
-    let text = std::fs::read_to_string(obj_path).map_err(|source| Error::Io {
+    let text = std::fs::read_to_string(obj_path).map_err(|reason| Error::Io {
         path: obj_path.to_path_buf(),
-        source,
+        reason,
     })?;
     if let Some((line, tok)) = find_bad_vertex(&text) {
         return Err(Error::Syntax {

@@ -63,6 +63,7 @@ struct RenderDesc {
     max_depth: Option<u32>,
     rr_depth: Option<u32>,
     seed: Option<u64>,
+    exposure: Option<f32>,
 }
 
 #[derive(Deserialize, Debug)]
@@ -151,9 +152,9 @@ fn non_negative3(path: &Path, field: &str, v: [f32; 3]) -> Result<Vec3> {
 
 /// Loads a TOML scene file (the format of the README's "Scene format").
 pub fn load(path: &Path) -> Result<Scene> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+    let text = std::fs::read_to_string(path).map_err(|reason| Error::Io {
         path: path.to_path_buf(),
-        source,
+        reason,
     })?;
     let file: SceneFile = toml::from_str(&text).map_err(|e| {
         let (line, column) = e.span().map(|s| line_col(&text, s.start)).unwrap_or((0, 0));
@@ -201,6 +202,7 @@ fn build_scene(path: &Path, text: &str, dir: &Path, file: SceneFile) -> Result<S
         max_depth: r.max_depth.unwrap_or(defaults.max_depth),
         rr_depth: r.rr_depth.unwrap_or(defaults.rr_depth),
         seed: r.seed.unwrap_or(defaults.seed),
+        exposure: r.exposure.unwrap_or(defaults.exposure),
     };
     settings
         .validate()
@@ -430,10 +432,10 @@ fn load_obj(
                 });
                 e
             }),
-            Err(source) => {
+            Err(reason) => {
                 *mtl_error.borrow_mut() = Some(Error::Io {
                     path: mtl_path.clone(),
-                    source,
+                    reason,
                 });
                 Err(tobj::LoadError::OpenFileFailed)
             }

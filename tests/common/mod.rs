@@ -8,6 +8,29 @@ use statrs::distribution::ContinuousCDF;
 
 use std::path::PathBuf;
 
+/// Records that `test` skipped a check, and why, where a reader of the normal output sees
+/// it: the line goes straight to the terminal's stderr (libtest captures only `print!` and
+/// `eprint!`, so `cargo test` shows it next to the test's `ok` without `--nocapture`), and
+/// it is appended to `target/skipped-tests.txt`, which `.ci/run` lists in its closing line.
+pub fn skip(test: &str, reason: &str) {
+    use std::io::Write;
+    let line = format!("SKIPPED {test}: {reason}");
+    let _ = std::io::stderr().write_all(format!("\n{line}\n").as_bytes());
+    // CARGO_TARGET_TMPDIR is target/tmp.
+    let list = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .parent()
+        .map(|t| t.join("skipped-tests.txt"));
+    if let Some(list) = list {
+        if let Ok(mut f) = std::fs::OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(list)
+        {
+            let _ = writeln!(f, "{line}");
+        }
+    }
+}
+
 /// Folder of the bundled scenes.
 pub fn scenes_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenes")

@@ -80,9 +80,9 @@ const TEXTURES: &str = "bitmap, checkerboard";
 
 /// Loads a Mitsuba 3 XML scene.
 pub fn load(path: &Path, opts: &ImportOptions) -> Result<Scene> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+    let text = std::fs::read_to_string(path).map_err(|reason| Error::Io {
         path: path.to_path_buf(),
-        source,
+        reason,
     })?;
     let xml = roxmltree::Document::parse(&text).map_err(|e| {
         let p = e.pos();
