@@ -612,3 +612,146 @@ fn map_pictures_show_where_the_particles_are() {
         );
     }
 }
+
+/// The maps of an unguided round on cornell, for guiding the passes of the next round.
+fn first_round(scene: &Scene) -> footprint_integrators::maps::Guidance {
+    let method = footprint_integrators::Method::parse("combined-footprint").unwrap();
+    let params = footprint::settings::GuideParams::default();
+    footprint_integrators::maps::Guidance::build(
+        scene,
+        &method,
+        &params,
+        &pass_settings(0, 77),
+        &|| None,
+    )
+}
+
+/// A light pass guided by an importance map (the maps refining each other) still conserves
+/// flux, now in expectation: every guided direction weighs its photon by `f cos / pdf`, so
+/// per batch the first hits plus the flux escaping at once equal the emitted power, and the
+/// second hits plus the second escape equal the first hits times their albedo, up to noise.
+/// t-tests on 16 batch values against the exact laws (Student's quantile at 0.01, Šidák over
+/// 2 laws x 3 channels).
+#[test]
+fn a_guided_light_pass_conserves_flux_in_expectation() {
+    let mut scene = load_scene(&scene_path("cornell")).unwrap();
+    scene.maps.photons = 40_000;
+    scene.maps.importons = 40_000;
+    let g = first_round(&scene);
+    let method = footprint_integrators::Method::parse("combined-footprint").unwrap();
+    let params = footprint::settings::GuideParams::default();
+    let sampler = g.light_sampler(&scene, &method, &params);
+    let batches = 16;
+    let (mut first_law, mut second_law) = (vec![Vec::new(); 3], vec![Vec::new(); 3]);
+    let mut guided = 0;
+    for b in 0..batches {
+        let out = light_pass(&scene, &pass_settings(20_000, 300 + b), &sampler);
+        guided += out.stats.guided_events - out.stats.fallbacks;
+        let sum =
+            |it: &mut dyn Iterator<Item = Rgb>| it.fold(glam::DVec3::ZERO, |a, w| a + w.as_dvec3());
+        let first = sum(&mut out
+            .particles
+            .iter()
+            .filter(|p| p.depth == 1)
+            .map(|p| p.weight));
+        let second = sum(&mut out
+            .particles
+            .iter()
+            .filter(|p| p.depth == 2)
+            .map(|p| p.weight));
+        let reflected = sum(&mut out
+            .particles
+            .iter()
+            .filter(|p| p.depth == 1)
+            .map(|p| p.weight * albedo_at(&scene, p)));
+        let e0 = out
+            .stats
+            .escaped
+            .first()
+            .copied()
+            .unwrap_or_default()
+            .as_dvec3();
+        let e1 = out
+            .stats
+            .escaped
+            .get(1)
+            .copied()
+            .unwrap_or_default()
+            .as_dvec3();
+        let emitted = out.stats.emitted.as_dvec3();
+        for c in 0..3 {
+            // Relative deviations from the laws, one value per batch.
+            first_law[c].push((first[c] + e0[c]) / emitted[c] - 1.0);
+            second_law[c].push((second[c] + e1[c]) / reflected[c] - 1.0);
+        }
+    }
+    assert!(
+        guided > 100_000,
+        "the light pass was hardly guided ({guided} events)"
+    );
+    let crit = t_critical(sidak(0.01, 6), (batches - 1) as f64);
+    for (law, devs) in [("first hits", &first_law), ("second hits", &second_law)] {
+        for (c, d) in devs.iter().enumerate() {
+            let (m, se) = mean_stderr(d);
+            let t = m.abs() / se.max(1e-12);
+            eprintln!("{law}, channel {c}: relative deviation {m:.5} ± {se:.5} (|t| {t:.2})");
+            assert!(t <= crit, "{law}, channel {c}: {m} ± {se}");
+        }
+    }
+}
+
+/// A view pass guided by a photon map still carries the camera's importance: its first hits
+/// are not guided (they leave the camera), and after the first guided bounce the importance
+/// reaching the second hits plus what escapes equals the first hits' importance times their
+/// albedo in expectation (t-tests on 16 batch values against 0, Student's quantile at 0.01,
+/// Šidák over the channels).
+#[test]
+fn a_guided_view_pass_keeps_the_cameras_importance() {
+    let mut scene = load_scene(&scene_path("cornell")).unwrap();
+    scene.maps.photons = 40_000;
+    scene.maps.importons = 40_000;
+    let g = first_round(&scene);
+    let method = footprint_integrators::Method::parse("combined-footprint").unwrap();
+    let params = footprint::settings::GuideParams::default();
+    let sampler = g.camera_sampler(&scene, &method, &params);
+    let batches = 16;
+    let mut law = vec![Vec::new(); 3];
+    let mut guided = 0;
+    for b in 0..batches {
+        let out = view_pass(&scene, &pass_settings(20_000, 400 + b), &sampler);
+        guided += out.stats.guided_events - out.stats.fallbacks;
+        let sum =
+            |it: &mut dyn Iterator<Item = Rgb>| it.fold(glam::DVec3::ZERO, |a, w| a + w.as_dvec3());
+        let second = sum(&mut out
+            .particles
+            .iter()
+            .filter(|p| p.depth == 2)
+            .map(|p| p.weight));
+        let reflected = sum(&mut out
+            .particles
+            .iter()
+            .filter(|p| p.depth == 1)
+            .map(|p| p.weight * albedo_at(&scene, p)));
+        let e1 = out
+            .stats
+            .escaped
+            .get(1)
+            .copied()
+            .unwrap_or_default()
+            .as_dvec3();
+        for c in 0..3 {
+            law[c].push((second[c] + e1[c]) / reflected[c] - 1.0);
+        }
+    }
+    assert!(
+        guided > 50_000,
+        "the view pass was hardly guided ({guided} events)"
+    );
+    let crit = t_critical(sidak(0.01, 3), (batches - 1) as f64);
+    for (c, d) in law.iter().enumerate() {
+        let (m, se) = mean_stderr(d);
+        let t = m.abs() / se.max(1e-12);
+        eprintln!("importance after the first bounce, channel {c}: {m:.5} ± {se:.5} (|t| {t:.2})");
+        assert!(t <= crit, "channel {c}: {m} ± {se}");
+    }
+}
