@@ -6,8 +6,8 @@
     python3 scripts/vs_mitsuba.py check        # both renderers on ../shared/scenes-ext (or the
                                             # scenes given), per-block z-test + image means
     python3 scripts/vs_mitsuba.py bench        # time per sample, Mitsuba `path` vs footprint pt
-    python3 scripts/vs_mitsuba.py compare      # Veach Ajar at equal time: Mitsuba `path` next to
-                                            # footprint's unguided, grid and footprint runs
+    python3 scripts/vs_mitsuba.py compare      # equal time (30 s) against Mitsuba `path` on the
+                                            # public scenes and the bundled scenes' XML
 
 Mitsuba 3 is installed from PyPI on first use (`pip install mitsuba numpy`); footprint is
 built with `cargo build --release` first. Both renderers read the same Mitsuba XML file with
@@ -243,56 +243,98 @@ def metrics(image, reference):
     return {k: float(v) for k, v in (t.split("=") for t in out.split())}
 
 
-def cmd_compare(args):
-    """Equal time on one scene: `footprint compare` for footprint's methods, and Mitsuba's
-    `path` given the same wall-clock budgets (rendering only; footprint's budgets include
-    its map passes), all measured against the same reference with the same metrics."""
-    import csv
+# The scenes of the equal-time table: (name, XML, -D parameters). The public scenes live in
+# ../shared/scenes-ext (skipped when absent); the bundled ones are footprint's own exports.
+TABLE = [
+    ("Veach Ajar 128x72", os.path.join(EXT, "veach-ajar", "scene.xml"), dict(resx=128, resy=72)),
+    ("Bitterli Cornell 64x64", os.path.join(EXT, "cornell-box-bitterli", "scene.xml"), dict(resx=64, resy=64)),
+    ("Bitterli Cornell 256x256", os.path.join(EXT, "cornell-box-bitterli", "scene.xml"), dict(resx=256, resy=256)),
+    ("McGuire Cornell 64x64", os.path.join(EXT, "cornell-box-mcguire", "mitsuba", "scene.xml"), dict(res=64)),
+    ("McGuire Cornell 256x256", os.path.join(EXT, "cornell-box-mcguire", "mitsuba", "scene.xml"), dict(res=256)),
+    ("cornell (bundled) 128x128", os.path.join(ROOT, "scenes", "cornell", "mitsuba", "scene.xml"), dict(resx=128, resy=128)),
+    ("door (bundled) 128x128", os.path.join(ROOT, "scenes", "door", "mitsuba", "scene.xml"), dict(resx=128, resy=128)),
+    ("desk (bundled) 128x128", os.path.join(ROOT, "scenes", "desk", "mitsuba", "scene.xml"), dict(resx=128, resy=128)),
+]
 
-    mi = mitsuba()
-    xml = args.scene or os.path.join(EXT, "veach-ajar", "scene.xml")
-    if not os.path.exists(xml):
-        print(f"SKIPPED: {xml} is absent (the public scenes live beside the repository, not in it)")
-        return 0
-    out = args.out or "compare-" + os.path.basename(os.path.dirname(os.path.abspath(xml)))
-    os.makedirs(out, exist_ok=True)
-    defines = {"resx": args.resx, "resy": args.resy}
-    dflags = [x for k, v in defines.items() for x in ("-D", f"{k}={v}")]
-    ladder = [args.time / 8, args.time / 4, args.time / 2, args.time]
-    cmd = [FOOTPRINT, "compare", xml, *dflags, "--time", str(args.time), "--methods", args.methods,
-           "--reference-spp", str(args.reference_spp), "--reference-cache", out, "-o", out]
-    print(" ".join(cmd), flush=True)
-    subprocess.run(cmd, check=True)
-    ref = os.path.join(out, f".scene-reference-{args.resx}x{args.resy}.exr")
+# References already rendered elsewhere, by table name (Mitsuba 3, ~164k spp).
+SHARED_REFS = {"Veach Ajar 128x72": os.path.join(os.path.dirname(ROOT), "shared", "refs", "veach-ajar_128x72.exr")}
+
+
+def rel_mse(x, r):
+    """The metric of `footprint metrics` (and of ../shared/refs/README.md)."""
+    import numpy as np
+    x, r = np.asarray(x, dtype=np.float64)[..., :3], np.asarray(r, dtype=np.float64)[..., :3]
+    m = (0.2126 * r[..., 0] + 0.7152 * r[..., 1] + 0.0722 * r[..., 2]).mean()
+    a, b = x / m, r / m
+    return float(((a - b) ** 2 / (b * b + 0.01)).mean())
+
+
+def mitsuba_reference(mi, name, xml, defines, out, seconds):
+    """A high-sample Mitsuba render of the scene, cached in `out` (rendered for `seconds`)."""
+    import numpy as np
+    if name in SHARED_REFS and os.path.exists(SHARED_REFS[name]):
+        return np.array(mi.Bitmap(SHARED_REFS[name]))
+    path = os.path.join(out, "reference-" + "".join(c if c.isalnum() else "_" for c in name) + ".exr")
+    if os.path.exists(path):
+        return np.array(mi.Bitmap(path))
     scene = mi.load_file(xml, **{k: str(v) for k, v in defines.items()})
     t0 = time.time()
-    mi.render(scene, spp=args.calibration_spp, seed=999)
-    per_spp = (time.time() - t0) / args.calibration_spp
+    mi.render(scene, spp=16, seed=7)
+    per_spp = (time.time() - t0) / 16
+    batches, spp = 8, max(16, int(seconds / per_spp / 8))
+    print(f"  reference: {batches} x {spp} spp ({seconds:.0f} s)", flush=True)
+    acc = None
+    for b in range(batches):
+        img = np.array(mi.render(scene, spp=spp, seed=10_000 + b))
+        acc = img if acc is None else acc + img
+    ref = acc / batches
+    mi.Bitmap(ref.astype(np.float32)).write(path)
+    return ref
+
+
+def cmd_compare(args):
+    """Equal time against Mitsuba 3 `path`: both renderers get the same wall-clock budget for
+    rendering (footprint's includes its map passes; neither includes loading the scene), on
+    the public scenes and the bundled scenes' XML, several seeds each; one table with the
+    median relative MSE of each and their ratio."""
+    import numpy as np
+    mi = mitsuba()
+    out = args.out or "compare-mitsuba"
+    os.makedirs(out, exist_ok=True)
     rows = []
-    for t in ladder:
-        spp = max(1, int(t / per_spp))
-        t0 = time.time()
-        img = mi.render(scene, spp=spp, seed=int(t * 1000))
-        secs = time.time() - t0
-        path = os.path.join(out, f"mitsuba-path-{t:g}s.exr")
-        mi.Bitmap(img).write(path)
-        m = metrics(path, ref)
-        rows.append(dict(method="mitsuba-path", time_budget_s=t, seconds=round(secs, 4), map_seconds=0,
-                         tracing_seconds=round(secs, 4), spp=spp, rel_mse=m["rel_mse"], mae=m["mae"],
-                         spots=int(m["spots"])))
-    with open(os.path.join(out, "mitsuba.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
-    ours = list(csv.DictReader(open(os.path.join(out, "metrics.csv"))))
-    ours = [{k.strip(): v.strip().strip('"') for k, v in r.items()} for r in ours]
-    print(f"\nequal time {args.time:g} s, {args.resx}x{args.resy}, reference: {ref}")
-    print(f"{'method':<22}{'seconds':>9}{'spp':>7}{'rel. MSE':>12}{'MAE':>12}{'spots':>7}")
-    for r in [*ours, *[{k: str(v) for k, v in r.items()} for r in rows]]:
-        if abs(float(r["time_budget_s"]) - args.time) > 1e-9:
+    for name, xml, defines in TABLE:
+        if args.only and not any(o.lower() in name.lower() for o in args.only):
             continue
-        print(f"{r['method']:<22}{float(r['seconds']):>9.2f}{r['spp']:>7}{float(r['rel_mse']):>12.4e}"
-              f"{float(r['mae']):>12.4e}{r['spots']:>7}")
+        if not os.path.exists(xml):
+            print(f"SKIPPED {name}: {xml} is absent (the public scenes live beside the repository)")
+            continue
+        print(f"{name}", flush=True)
+        ref = mitsuba_reference(mi, name, xml, defines, out, args.reference_time)
+        scene = mi.load_file(xml, **{k: str(v) for k, v in defines.items()})
+        t0 = time.time()
+        mi.render(scene, spp=4, seed=999)
+        per_spp = (time.time() - t0) / 4
+        dflags = [x for k, v in defines.items() for x in ("-D", f"{k}={v}")]
+        ours, theirs, our_spp, their_spp = [], [], [], []
+        for s in range(args.seeds):
+            spp = max(1, int(args.time / per_spp))
+            img = np.array(mi.render(scene, spp=spp, seed=100 + s))
+            theirs.append(rel_mse(img, ref))
+            their_spp.append(spp)
+            exr = os.path.join(out, "footprint.exr")
+            run = subprocess.run([FOOTPRINT, "render", xml, *dflags, "--integrator", args.integrator,
+                                  "--guide", args.guide, "--time", str(args.time), "--seed", str(100 + s),
+                                  "-o", exr], check=True, capture_output=True, text=True)
+            our_spp.append(int(run.stdout.split(" spp ")[0].split()[-1]))
+            ours.append(rel_mse(np.array(mi.Bitmap(exr))[..., :3], ref))
+            print(f"  seed {s}: footprint {ours[-1]:.4g} ({our_spp[-1]} spp), Mitsuba {theirs[-1]:.4g} ({spp} spp)", flush=True)
+        rows.append((name, float(np.median(ours)), int(np.median(our_spp)), float(np.median(theirs)),
+                     int(np.median(their_spp))))
+    print(f"\nequal time {args.time:g} s per render, {args.seeds} seeds, footprint {args.integrator}-{args.guide}; medians")
+    print(f"| scene | footprint rel. MSE (spp) | Mitsuba 3 `path` rel. MSE (spp) | ratio |")
+    print(f"|---|---|---|---|")
+    for name, o, os_, t, ts in rows:
+        print(f"| {name} | {o:.4g} ({os_}) | {t:.4g} ({ts}) | {o / t:.2f} |")
     return 0
 
 
@@ -316,13 +358,12 @@ def main():
     b.add_argument("--max-depth", type=int, default=8)
     b.add_argument("--repeat", type=int, default=3)
     q = sub.add_parser("compare", help="equal time against Mitsuba's path on Veach Ajar (or SCENE)")
-    q.add_argument("scene", nargs="?")
-    q.add_argument("--time", type=float, default=16.0, help="equal-time budget in seconds")
-    q.add_argument("--resx", type=int, default=128)
-    q.add_argument("--resy", type=int, default=72)
-    q.add_argument("--methods", default="pt-bsdf,pt-grid,pt-footprint")
-    q.add_argument("--reference-spp", type=int, default=2048)
-    q.add_argument("--calibration-spp", type=int, default=4)
+    q.add_argument("only", nargs="*", help="scenes of the table whose name contains one of these words")
+    q.add_argument("--time", type=float, default=30.0, help="equal-time budget in seconds")
+    q.add_argument("--seeds", type=int, default=3, help="renders per renderer and scene")
+    q.add_argument("--integrator", default="pt")
+    q.add_argument("--guide", default="bsdf")
+    q.add_argument("--reference-time", type=float, default=600.0, help="seconds of a Mitsuba reference")
     q.add_argument("-o", "--out")
     args = ap.parse_args()
     sys.exit({"references": cmd_references, "check": cmd_check, "bench": cmd_bench,
