@@ -107,9 +107,25 @@ pub struct Row {
     pub rel_mse: f64,
     pub mae: f64,
     pub spots: usize,
+    /// The share of the image's light (luminance summed over pixels) that the largest single
+    /// sample carried into one pixel: light transport at low sample counts is heavy-tailed,
+    /// and a large share says that this run's error rests on a few paths (a rare, heavy
+    /// path can make one seed look far better or worse than the next).
+    pub largest_share: f64,
     /// The run took more than the budget (plus [`BUDGET_TOLERANCE`]): its error is not an
     /// equal-time error.
     pub budget_missed: bool,
+}
+
+/// The largest single-sample contribution's share of the image (see [`Row::largest_share`]):
+/// a sample's value is averaged over the passes, so its share of the summed image is
+/// `value / (passes · Σ pixels)`.
+pub fn largest_share(r: &crate::RenderResult) -> f64 {
+    let total = luminance(r.image.mean()) as f64 * r.image.pixels.len() as f64;
+    if !(total > 0.0) || r.passes == 0 {
+        return 0.0;
+    }
+    r.stats.max_luminance as f64 / (r.passes as f64 * total)
 }
 
 /// A short text that identifies what a reference was rendered from: the scene files'
@@ -563,6 +579,7 @@ pub fn run(
                 rel_mse: rel_mse(&r.image, &reference),
                 mae: mae(&r.image, &reference),
                 spots: spots(&r.image, &reference),
+                largest_share: largest_share(&r),
                 budget_missed,
             });
             if li + 1 == s.ladder.len() {
@@ -696,7 +713,7 @@ fn html(
             100.0 * BUDGET_TOLERANCE
         );
     }
-    out += "<h2>Equal time</h2>\n<table><tr><th>method</th><th>spp</th><th>seconds</th><th>maps (s)</th><th>relative MSE</th><th>MAE</th><th>spots</th><th>slope</th><th>time to reach target (s)</th><th>budget</th></tr>\n";
+    out += "<h2>Equal time</h2>\n<table><tr><th>method</th><th>spp</th><th>seconds</th><th>maps (s)</th><th>relative MSE</th><th>MAE</th><th>spots</th><th>largest sample</th><th>slope</th><th>time to reach target (s)</th><th>budget</th></tr>\n";
     for MethodSummary {
         method: m,
         slope,
@@ -715,7 +732,7 @@ fn html(
             };
             let _ = writeln!(
                 out,
-                "<tr{}><td style=\"text-align:left\">{m}</td><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{:.4e}</td><td>{:.4e}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                "<tr{}><td style=\"text-align:left\">{m}</td><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{:.4e}</td><td>{:.4e}</td><td>{}</td><td>{:.2}%</td><td>{}</td><td>{}</td><td>{}</td></tr>",
                 missed_class(r),
                 r.spp,
                 r.seconds,
@@ -723,6 +740,7 @@ fn html(
                 r.rel_mse,
                 r.mae,
                 r.spots,
+                100.0 * r.largest_share,
                 f(slope),
                 f(tt),
                 budget_cell(r)
@@ -731,7 +749,7 @@ fn html(
     }
     let _ = writeln!(
         out,
-        "</table>\n<p>Target error for the last column: {target:.4e} (the median equal-time relative MSE). Slope: of log error against log time over the rungs with different sample counts (- when fewer than two).</p>"
+        "</table>\n<p>Target error for the last column: {target:.4e} (the median equal-time relative MSE). Slope: of log error against log time over the rungs with different sample counts (- when fewer than two). Largest sample: the share of the image's light that the largest single sample carried into one pixel; when it is large the error rests on a few rare paths, and a single run's relative MSE can be far from the typical one (compare several seeds).</p>"
     );
     out += "<h2>Every rung</h2>\n<table><tr><th>method</th><th>budget (s)</th><th>seconds</th><th>maps (s)</th><th>tracing (s)</th><th>spp</th><th>relative MSE</th><th>MAE</th><th>spots</th><th>budget</th></tr>\n";
     for r in rows {

@@ -708,18 +708,19 @@ fn run(cli: Cli) -> Result<()> {
             )?;
             let last = *settings.ladder.last().unwrap();
             println!(
-                "{:<28} {:>6} {:>9} {:>12} {:>12} {:>7}  budget",
-                "method", "spp", "seconds", "rel. MSE", "MAE", "spots"
+                "{:<28} {:>6} {:>9} {:>12} {:>12} {:>7} {:>9}  budget",
+                "method", "spp", "seconds", "rel. MSE", "MAE", "spots", "largest"
             );
             for r in rows.iter().filter(|r| r.time_budget == last) {
                 println!(
-                    "{:<28} {:>6} {:>9.2} {:>12.4e} {:>12.4e} {:>7}  {}",
+                    "{:<28} {:>6} {:>9.2} {:>12.4e} {:>12.4e} {:>7} {:>8.2}%  {}",
                     r.method,
                     r.spp,
                     r.seconds,
                     r.rel_mse,
                     r.mae,
                     r.spots,
+                    100.0 * r.largest_share,
                     if r.budget_missed { "MISSED" } else { "kept" }
                 );
             }
