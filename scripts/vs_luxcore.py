@@ -107,14 +107,11 @@ def _lux_log(msg):
 
 
 def luxcore_available():
-    try:
-        import numpy  # noqa: F401
+    """Whether pyluxcore (and numpy) can be imported, without importing them: importing
+    pyluxcore before Mitsuba aborts the process when Mitsuba loads (see `luxcore`)."""
+    import importlib.util
 
-        with contextlib.redirect_stdout(io.StringIO()):
-            import pyluxcore  # noqa: F401
-        return True
-    except ImportError:
-        return False
+    return all(importlib.util.find_spec(m) is not None for m in ("numpy", "pyluxcore"))
 
 
 def finish(code):

@@ -29,7 +29,8 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-FOOTPRINT = os.path.join(ROOT, "target", "release", "footprint")
+# The binary to measure: $FOOTPRINT_BIN (the tests pass their own), else the release build.
+FOOTPRINT = os.environ.get("FOOTPRINT_BIN") or os.path.join(ROOT, "target", "release", "footprint")
 EXT = os.path.join(os.path.dirname(ROOT), "shared", "scenes-ext")
 REF_DIR = os.path.join(ROOT, "tests", "mitsuba-references")
 

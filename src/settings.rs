@@ -258,7 +258,7 @@ impl Default for GuideParams {
             grid_side: 8,
             cache: true,
             region_particles: 400,
-            region_seeds: 256,
+            region_seeds: 1024,
             min_depth: 2,
             guided_mis: false,
             grazing_cos_min: 1e-3,
