@@ -12,7 +12,10 @@
 //! **Russian roulette, one rule** for every walk: after scattering at a vertex of depth
 //! `rr_depth` ([`RR_START_DEPTH`] by default) or more, the path continues with probability
 //! `q = clamp(max_c β_c / max_c β_0, 0.05, 1)` (β the throughput after scattering, β_0 the
-//! throughput the walk started with) and its throughput is divided by `q`. Camera paths
+//! throughput the walk started with) and its throughput is divided by `q`. β here is the
+//! throughput BSDF sampling would have given the same directions ([`DirectionSample::rr_weight`]):
+//! a guide lowers the weight of the directions it favours, and would otherwise get exactly
+//! those paths cut more often. Any `q > 0` keeps the estimate unbiased. Camera paths
 //! start at β_0 = 1; light paths and particles at their emitted weight, so the rule reads
 //! the same relative to what the path carried at its start.
 
@@ -109,6 +112,8 @@ pub fn walk<'a>(
     let mut origin = start.origin;
     let mut dir = start.dir;
     let mut beta = start.beta;
+    // The throughput Russian roulette reads: BSDF sampling's weights, not the guide's.
+    let mut beta_rr = start.beta;
     let mut from = Arrival {
         prev_p: start.origin,
         pdf_w: 0.0,
@@ -145,6 +150,7 @@ pub fn walk<'a>(
             return;
         };
         beta *= s.weight;
+        beta_rr *= s.rr_weight;
         if !beta.is_finite() || beta.max_element() <= 0.0 {
             return;
         }
@@ -157,11 +163,12 @@ pub fn walk<'a>(
 
         // ---- Russian roulette ----
         if depth >= start.rr_depth {
-            let q = survival_probability(beta, beta0_max);
+            let q = survival_probability(beta_rr, beta0_max);
             if rng.uniform() >= q {
                 return;
             }
             beta /= q;
+            beta_rr /= q;
         }
         origin = spawn_origin(v.hit.p, v.hit.ng, s.wi);
         dir = s.wi;

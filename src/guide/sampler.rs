@@ -80,6 +80,10 @@ pub struct DirectionSample {
     pub pdf_w: f32,
     /// `f · |wi · n_s| / pdf_w`.
     pub weight: Rgb,
+    /// The weight BSDF sampling alone would have given this direction, `f · |wi · n_s| /
+    /// p_bsdf(wi)`: what Russian roulette reads, so that a guide that sends paths where they
+    /// matter (and so lowers their weight there) does not get them cut more often.
+    pub rr_weight: Rgb,
     pub delta: bool,
 }
 
@@ -265,6 +269,7 @@ impl<'a> GuidedSampler<'a> {
                 wi: s.wi,
                 pdf_w: s.pdf_w,
                 weight: s.weight,
+                rr_weight: s.weight,
                 delta: s.delta,
             });
         };
@@ -275,22 +280,26 @@ impl<'a> GuidedSampler<'a> {
         } else {
             dist.sample(&mix, rng)?
         };
-        let pdf_w = self.mixture_pdf(at, dist, &mix, wi);
+        let bsdf_pdf = at.bsdf.pdf(at.wo, wi);
+        let p = self.params.p_bsdf;
+        let pdf_w = p * bsdf_pdf + (1.0 - p) * dist.pdf(&mix, wi);
         if !(pdf_w > 0.0 && pdf_w.is_finite()) {
             return None;
         }
         // A direction the BSDF does not scatter into (a footprint across the horizon of an
         // opaque surface) is still a draw: it comes back with zero weight, so that what
         // `sample` draws is exactly the density `pdf` describes.
-        let f = at.bsdf.eval(at.wo, wi, at.mode);
-        let weight = f * (wi.dot(at.bsdf.frame.z).abs() / pdf_w);
+        let fc = at.bsdf.eval(at.wo, wi, at.mode) * wi.dot(at.bsdf.frame.z).abs();
+        let valid = |w: Rgb| if is_valid_rgb(w) { w } else { Rgb::ZERO };
+        let weight = valid(fc / pdf_w);
         Some(DirectionSample {
             wi,
             pdf_w,
-            weight: if is_valid_rgb(weight) {
-                weight
+            weight,
+            rr_weight: if bsdf_pdf > 0.0 {
+                valid(fc / bsdf_pdf)
             } else {
-                Rgb::ZERO
+                weight
             },
             delta: false,
         })
