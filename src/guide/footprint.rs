@@ -152,6 +152,9 @@ pub struct FootprintDistribution {
     /// Per channel, the cumulative probabilities over `caps` (empty when the channel's total
     /// is zero); a cap's probability is the difference of consecutive entries.
     cdf: [Vec<f32>; 3],
+    /// Per cap, the three channels' selection probabilities: the differences of `cdf`
+    /// (so `pdf` uses exactly what `sample` searches), kept together for `pdf`.
+    probs: Vec<[f32; 3]>,
     totals: Rgb,
     nodes: Vec<Node>,
 }
@@ -243,15 +246,17 @@ impl FootprintDistribution {
         }
         out.totals = Rgb::new(totals[0] as f32, totals[1] as f32, totals[2] as f32);
         out.caps = caps.into_iter().map(|(c, _)| c).collect();
+        out.probs = (0..out.caps.len())
+            .map(|i| [out.prob(0, i), out.prob(1, i), out.prob(2, i)])
+            .collect();
         out
     }
 
     /// Probability with which `sample` chooses cap `i` under the channel mixture `mix`.
+    #[inline]
     pub fn probability(&self, mix: &ChannelMix, i: usize) -> f32 {
-        (0..3)
-            .filter(|&ch| mix.0[ch] > 0.0)
-            .map(|ch| mix.0[ch] * self.prob(ch, i))
-            .sum()
+        let p = &self.probs[i];
+        mix.0[0] * p[0] + mix.0[1] * p[1] + mix.0[2] * p[2]
     }
 
     /// Probability of choosing cap `i` in channel `ch`.
@@ -354,13 +359,7 @@ impl GuideDistribution for FootprintDistribution {
         self.for_caps_near(wi, |i| {
             let cap = &self.caps[i];
             if cap.contains(wi) {
-                let mut sel = 0.0;
-                for ch in 0..3 {
-                    if mix.0[ch] > 0.0 {
-                        sel += mix.0[ch] * self.prob(ch, i);
-                    }
-                }
-                p += sel * cap.inv_solid_angle;
+                p += self.probability(mix, i) * cap.inv_solid_angle;
             }
         });
         p
@@ -373,6 +372,7 @@ impl GuideDistribution for FootprintDistribution {
     fn heap_bytes(&self) -> usize {
         self.caps.capacity() * std::mem::size_of::<Cap>()
             + self.cdf.iter().map(|c| c.capacity() * 4).sum::<usize>()
+            + self.probs.capacity() * 12
             + self.nodes.capacity() * std::mem::size_of::<Node>()
     }
 }
