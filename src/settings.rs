@@ -260,7 +260,7 @@ impl Default for GuideParams {
             region_particles: 400,
             region_seeds: 1024,
             min_depth: 2,
-            guided_mis: false,
+            guided_mis: true,
             grazing_cos_min: 1e-3,
         }
     }
