@@ -15,6 +15,7 @@
 //! * [`render`]: passes, threads, time budgets, progress, and the run summary;
 //! * [`scene_hash`]: the scene's content hash (references, saved maps, shards);
 //! * [`shard`]: which passes a render draws (shard `i` of `N`);
+//! * [`skips`]: what a scene's absent effects let a render skip, and the counters;
 //! * [`compare`]: equal-time comparisons, error against time, parameter sweeps.
 
 pub mod compare;
@@ -30,6 +31,7 @@ pub mod passes;
 pub mod render;
 pub mod scene_hash;
 pub mod shard;
+pub mod skips;
 pub mod walk;
 
 pub use method::Method;

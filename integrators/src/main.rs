@@ -196,6 +196,10 @@ enum Command {
         /// instead of running them; refused if made for another scene or other settings
         #[arg(long = "maps", value_name = "MAPS.fpm")]
         maps_file: Option<PathBuf>,
+        /// Run the general path loop instead of the one compiled for the scene's effects
+        /// (the same image, bit for bit; for measuring what the specialisation gains)
+        #[arg(long)]
+        general_loop: bool,
         #[command(flatten)]
         params: GuideParamArgs,
         #[command(flatten)]
@@ -508,6 +512,7 @@ fn run(cli: Cli) -> Result<()> {
             threads,
             shard,
             maps_file,
+            general_loop,
             guide,
             film,
             params,
@@ -540,6 +545,7 @@ fn run(cli: Cli) -> Result<()> {
             }
             params.apply(&mut opts.guide_params)?;
             opts.film = film;
+            opts.specialise = !general_loop;
             if let Some(s) = spp {
                 opts.spp = s;
                 opts.time = None;
@@ -887,6 +893,7 @@ fn maps_command(
         rr_depth: footprint_integrators::walk::RR_START_DEPTH,
         seed: seed.unwrap_or(scene.settings.seed),
         soft_glossy_max: scene.maps.soft_glossy_max,
+        specialise: true,
     };
     println!(
         "maximum query distance {:.4} (scene units)",
@@ -977,8 +984,9 @@ fn render_command(
             load_s
         );
         eprintln!("effects: {}", effects.join(", "));
+        eprintln!("path loop: {}", opts.specialisation(scene).name());
         for s in scene.effects.skipped() {
-            eprintln!("skipped: {s}");
+            eprintln!("skips: {s}");
         }
     }
     if scene.stats.degenerate_skipped > 0 {
@@ -1034,6 +1042,7 @@ fn render_command(
                 rr_depth: footprint_integrators::walk::RR_START_DEPTH,
                 seed: opts.seed,
                 soft_glossy_max: scene.maps.soft_glossy_max,
+                specialise: true,
             };
             Guidance::build(scene, &opts.method, &opts.guide_params, &pass, &heap_bytes)
         }
@@ -1133,6 +1142,7 @@ fn render_command(
         ),
     ];
     let mut header = header;
+    header.push(("footprint/skipped".into(), result.skipped.join("; ")));
     if let Some(path) = maps_file.filter(|_| opts.method.guided()) {
         header.push(("footprint/maps_file".into(), path.display().to_string()));
         header.push((
@@ -1164,6 +1174,9 @@ fn render_command(
         };
         g("camera paths", &result.camera_guide);
         g("light paths", &result.light_guide);
+        for s in &result.skipped {
+            eprintln!("skipped: {s}");
+        }
         eprintln!(
             "time: view pass {:.2} s, light pass {:.2} s, map builds {:.2} s, cache builds {:.2} s, tracing {:.2} s",
             t.maps.view_pass.as_secs_f64(),

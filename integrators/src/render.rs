@@ -20,6 +20,7 @@ use footprint::film::{Film, FilmMode, Image, SampleStats, SplatList};
 use footprint::guide::sampler::SamplerState;
 use footprint::rng::Rng;
 use footprint::scene::Scene;
+use footprint::scene::features::Specialisation;
 use footprint::settings::GuideParams;
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
@@ -42,6 +43,9 @@ pub struct RenderOptions {
     /// Which of the passes `0..spp` to draw (a shard, [`crate::shard`]); all by default. With
     /// a time budget, the selection's passes in order until the time is spent.
     pub passes: PassSelection,
+    /// Run the path loop compiled for the scene's effects (the default) or the general one:
+    /// the same image for a fixed seed, bit for bit (`footprint::scene::features`).
+    pub specialise: bool,
 }
 
 impl Default for RenderOptions {
@@ -57,11 +61,22 @@ impl Default for RenderOptions {
             rr_depth: crate::walk::RR_START_DEPTH,
             seed: 0,
             passes: PassSelection::ALL,
+            specialise: true,
         }
     }
 }
 
 impl RenderOptions {
+    /// The compiled path loop this render runs in: the narrowest one for the scene's
+    /// effects, or the general one when `specialise` is off.
+    pub fn specialisation(&self, scene: &Scene) -> Specialisation {
+        if self.specialise {
+            Specialisation::for_effects(&scene.effects)
+        } else {
+            Specialisation::General
+        }
+    }
+
     /// Options from the scene file's render and guide settings; an unknown integrator or
     /// guide name is an error naming its place in the file.
     pub fn from_scene(scene: &Scene) -> Result<Self, String> {
@@ -76,6 +91,7 @@ impl RenderOptions {
             rr_depth: s.rr_depth,
             seed: s.seed,
             passes: PassSelection::ALL,
+            specialise: true,
         })
     }
 }
@@ -88,17 +104,40 @@ pub struct Timings {
     pub total: Duration,
 }
 
-/// Counts of guided scattering events and of fallbacks to BSDF sampling.
+/// Counts of guided scattering events and of fallbacks to BSDF sampling, and of the surface
+/// hits and escaping rays of the paths (what the skip counters are made of).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct GuideCounts {
     pub prepared: u64,
     pub fallbacks: u64,
+    pub vertices: u64,
+    pub escapes: u64,
 }
 
 impl GuideCounts {
-    fn add(&mut self, s: &SamplerState) {
-        self.prepared += s.prepared_events;
-        self.fallbacks += s.fallbacks;
+    fn of(s: &SamplerState) -> Self {
+        GuideCounts {
+            prepared: s.prepared_events,
+            fallbacks: s.fallbacks,
+            vertices: s.vertices,
+            escapes: s.escapes,
+        }
+    }
+
+    fn add(&mut self, o: &GuideCounts) {
+        self.prepared += o.prepared;
+        self.fallbacks += o.fallbacks;
+        self.vertices += o.vertices;
+        self.escapes += o.escapes;
+    }
+
+    fn minus(&self, o: &GuideCounts) -> Self {
+        GuideCounts {
+            prepared: self.prepared - o.prepared,
+            fallbacks: self.fallbacks - o.fallbacks,
+            vertices: self.vertices - o.vertices,
+            escapes: self.escapes - o.escapes,
+        }
     }
 }
 
@@ -124,6 +163,8 @@ pub struct RenderResult {
     pub light_guide: GuideCounts,
     /// Summaries of the maps and caches built.
     pub maps: Vec<String>,
+    /// What the scene's absent effects let the render skip, with counts ([`crate::skips`]).
+    pub skipped: Vec<String>,
 }
 
 /// Stream domains, so that camera and light paths never share random numbers.
@@ -158,6 +199,7 @@ pub fn guidance(scene: &Scene, opts: &RenderOptions, heap: &dyn Fn() -> Option<u
         rr_depth: opts.rr_depth,
         seed: opts.seed,
         soft_glossy_max: scene.maps.soft_glossy_max,
+        specialise: opts.specialise,
     };
     Guidance::build(scene, &opts.method, &opts.guide_params, &pass, heap)
 }
@@ -241,6 +283,7 @@ fn trace(
         camera_sampler: guidance.camera_sampler(scene, &opts.method, &opts.guide_params),
         light_sampler: guidance.light_sampler(scene, &opts.method, &opts.guide_params),
         guided_mis: opts.guide_params.guided_mis,
+        specialisation: opts.specialisation(scene),
     };
 
     // ---- Passes ----
@@ -271,7 +314,7 @@ fn trace(
             let rows: Vec<(Vec<Rgb>, Vec<SplatList>, GuideCounts)> = (0..cam.height)
                 .into_par_iter()
                 .map_init(SamplerState::default, |state, y| {
-                    let before = (state.prepared_events, state.fallbacks);
+                    let before = GuideCounts::of(state);
                     let mut row = vec![Rgb::ZERO; cam.width as usize * layers.len()];
                     let mut splats =
                         vec![SplatList::default(); if splat { layers.len() } else { 0 }];
@@ -295,10 +338,7 @@ fn trace(
                             }
                         }
                     }
-                    let counts = GuideCounts {
-                        prepared: state.prepared_events - before.0,
-                        fallbacks: state.fallbacks - before.1,
-                    };
+                    let counts = GuideCounts::of(state).minus(&before);
                     (row, splats, counts)
                 })
                 .collect();
@@ -314,8 +354,7 @@ fn trace(
                 }
             }
             for r in &rows {
-                camera_guide.prepared += r.2.prepared;
-                camera_guide.fallbacks += r.2.fallbacks;
+                camera_guide.add(&r.2);
             }
         }
         if paths.light {
@@ -330,17 +369,14 @@ fn trace(
                         let mut rng = Rng::new(opts.seed, DOMAIN_LIGHT, index);
                         integrator.light_path(&ctx, &mut rng, &mut state, &mut splats);
                     }
-                    let mut counts = GuideCounts::default();
-                    counts.add(&state);
-                    (splats, counts)
+                    (splats, GuideCounts::of(&state))
                 })
                 .collect();
             for (splats, counts) in &lists {
                 for (film, s) in films.iter_mut().zip(splats) {
                     film.add_splats(s);
                 }
-                light_guide.prepared += counts.prepared;
-                light_guide.fallbacks += counts.fallbacks;
+                light_guide.add(counts);
             }
         }
         passes += 1;
@@ -379,6 +415,13 @@ fn trace(
         })
         .collect();
     let total_paths = passes as u64 * npix as u64 * (paths.camera as u64 + paths.light as u64);
+    let mut skipped = guidance.skipped.clone();
+    skipped.extend(crate::skips::counted(
+        scene,
+        ctx.specialisation,
+        paths.camera.then_some(&camera_guide),
+        total_paths,
+    ));
     let elapsed = charged + start.elapsed();
     RenderResult {
         image: layer_images[0].1.clone(),
@@ -395,5 +438,6 @@ fn trace(
         camera_guide,
         light_guide,
         maps: guidance.summaries.clone(),
+        skipped,
     }
 }
