@@ -2,6 +2,7 @@
 //!
 //! * [`integrator`]: the `Integrator` trait and its registry: path tracing, light tracing,
 //!   and the combined image;
+//! * [`auto`]: the method chosen by a short pilot;
 //! * [`walk`]: the one path loop (vertex, Russian roulette, spawn) that the integrators and
 //!   both particle passes share;
 //! * [`emit`]: where light paths start (light choice, guided emission at area lights);
@@ -18,6 +19,7 @@
 //! * [`skips`]: what a scene's absent effects let a render skip, and the counters;
 //! * [`compare`]: equal-time comparisons, error against time, parameter sweeps.
 
+pub mod auto;
 pub mod compare;
 pub mod emit;
 pub mod integrator;

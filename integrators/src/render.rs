@@ -9,6 +9,7 @@
 //! the number of threads. A shard ([`RenderOptions::passes`], [`crate::shard`]) draws only
 //! the passes `k` it owns, with the same streams, so shards add up to one run.
 
+use crate::auto::AutoSpec;
 use crate::integrator::Context;
 use crate::maps::{Guidance, MapTimings};
 use crate::method::Method;
@@ -46,6 +47,9 @@ pub struct RenderOptions {
     /// Run the path loop compiled for the scene's effects (the default) or the general one:
     /// the same image for a fixed seed, bit for bit (`footprint::scene::features`).
     pub specialise: bool,
+    /// Choose the method by a pilot among these candidates (`auto`, [`crate::auto`]);
+    /// `method` is then replaced by the choice.
+    pub auto: Option<AutoSpec>,
 }
 
 impl Default for RenderOptions {
@@ -62,6 +66,7 @@ impl Default for RenderOptions {
             seed: 0,
             passes: PassSelection::ALL,
             specialise: true,
+            auto: None,
         }
     }
 }
@@ -81,8 +86,10 @@ impl RenderOptions {
     /// guide name is an error naming its place in the file.
     pub fn from_scene(scene: &Scene) -> Result<Self, String> {
         let s = &scene.settings;
+        let (method, auto) = Method::request_from_scene(scene)?;
         Ok(RenderOptions {
-            method: Method::from_scene(scene)?,
+            method,
+            auto,
             film: FilmMode::Splat,
             guide_params: scene.guide.clone(),
             spp: s.spp,
@@ -94,6 +101,54 @@ impl RenderOptions {
             specialise: true,
         })
     }
+
+    /// Applies an integrator and a guide given by name (`None`: keep; `auto`: chosen by the
+    /// pilot, the other kept fixed unless it is `auto` too).
+    pub fn apply_names(
+        &mut self,
+        integrator: Option<&str>,
+        guide: Option<&str>,
+    ) -> Result<(), String> {
+        if integrator.is_none() && guide.is_none() {
+            return Ok(());
+        }
+        // What is fixed so far: the previous choice, unless it was auto.
+        let fixed_i = match &self.auto {
+            Some(a) if a.label.starts_with("auto") => None,
+            _ => Some(self.method),
+        };
+        let fixed_g = match &self.auto {
+            Some(a) if a.label.ends_with("auto") => None,
+            _ => Some(self.method),
+        };
+        let i = match integrator {
+            Some("auto") => None,
+            Some(n) => Some(Method {
+                integrator: Method::integrator(n)?,
+                ..self.method
+            }),
+            None => fixed_i,
+        };
+        let g = match guide {
+            Some("auto") => None,
+            Some(n) => Some(Method {
+                guide: Method::guide(n)?,
+                ..self.method
+            }),
+            None => fixed_g,
+        };
+        match (i, g) {
+            (Some(i), Some(g)) => {
+                self.method = Method {
+                    integrator: i.integrator,
+                    guide: g.guide,
+                };
+                self.auto = None;
+            }
+            _ => self.auto = Some(AutoSpec::new(i, g)),
+        }
+        Ok(())
+    }
 }
 
 /// Where the time went.
@@ -101,6 +156,9 @@ impl RenderOptions {
 pub struct Timings {
     pub maps: MapTimings,
     pub tracing: Duration,
+    /// Of the tracing, the camera paths' and the light paths' share.
+    pub camera_paths: Duration,
+    pub light_paths: Duration,
     pub total: Duration,
 }
 
@@ -165,6 +223,10 @@ pub struct RenderResult {
     pub maps: Vec<String>,
     /// What the scene's absent effects let the render skip, with counts ([`crate::skips`]).
     pub skipped: Vec<String>,
+    /// The method rendered (`auto`'s choice when it chose).
+    pub method: Method,
+    /// Why `auto` chose it.
+    pub auto: Option<String>,
 }
 
 /// Stream domains, so that camera and light paths never share random numbers.
@@ -213,6 +275,22 @@ pub fn render_with(
     on_progress: impl FnMut(f64),
 ) -> RenderResult {
     let start = Instant::now();
+    if let Some(spec) = &opts.auto {
+        // The pilot, then the chosen method for the rest of the budget (from `start`).
+        let choice = crate::auto::choose(scene, opts, spec);
+        let chosen = RenderOptions {
+            method: choice.method,
+            auto: None,
+            ..opts.clone()
+        };
+        let g = match choice.guidance {
+            Some(g) => g,
+            None => guidance(scene, &chosen, heap),
+        };
+        let mut r = render_guided(scene, &chosen, &g, start, on_progress);
+        r.auto = Some(choice.reason);
+        return r;
+    }
     // ---- Particle maps and guide caches: only those the method uses ----
     let guidance = guidance(scene, opts, heap);
     render_guided(scene, opts, &guidance, start, on_progress)
@@ -295,6 +373,7 @@ fn trace(
     let mut camera_guide = GuideCounts::default();
     let mut light_guide = GuideCounts::default();
     let mut passes = 0u32;
+    let (mut camera_time, mut light_time) = (Duration::ZERO, Duration::ZERO);
     let budget = opts.passes.passes_of(opts.spp);
     assert!(
         opts.time.is_some() || budget > 0,
@@ -307,6 +386,7 @@ fn trace(
     loop {
         // The stream index of this pass (a shard draws every `count`-th pass).
         let k = opts.passes.pass(passes) as u64;
+        let camera_start = Instant::now();
         if paths.camera {
             // Splatting and filter importance sampling coincide for the box filter; the
             // box keeps the cheaper per-pixel accumulation.
@@ -357,6 +437,8 @@ fn trace(
                 camera_guide.add(&r.2);
             }
         }
+        camera_time += camera_start.elapsed();
+        let light_start = Instant::now();
         if paths.light {
             let chunks = npix.div_ceil(LT_CHUNK);
             let lists: Vec<(Vec<SplatList>, GuideCounts)> = (0..chunks)
@@ -379,6 +461,7 @@ fn trace(
                 light_guide.add(counts);
             }
         }
+        light_time += light_start.elapsed();
         passes += 1;
         let elapsed = elapsed_since(start);
         let pass_time = elapsed - last_pass_end;
@@ -432,6 +515,8 @@ fn trace(
         timings: Timings {
             maps: guidance.timings.clone(),
             tracing,
+            camera_paths: camera_time,
+            light_paths: light_time,
             total: elapsed,
         },
         stats,
@@ -439,5 +524,7 @@ fn trace(
         light_guide,
         maps: guidance.summaries.clone(),
         skipped,
+        method: opts.method,
+        auto: None,
     }
 }
