@@ -17,47 +17,14 @@ fn dir(name: &str) -> PathBuf {
     d
 }
 
-/// An axis-aligned box as 12 triangles, counter-clockwise seen from outside.
-fn boxed(obj: &mut String, base: &mut usize, lo: [f32; 3], hi: [f32; 3]) {
-    for i in 0..8 {
-        let x = if i & 1 == 0 { lo[0] } else { hi[0] };
-        let y = if i & 2 == 0 { lo[1] } else { hi[1] };
-        let z = if i & 4 == 0 { lo[2] } else { hi[2] };
-        obj.push_str(&format!("v {x} {y} {z}\n"));
-    }
-    // Faces (vertex bits: x = 1, y = 2, z = 4), outward.
-    let quads = [
-        [0, 2, 3, 1], // z = lo
-        [4, 5, 7, 6], // z = hi
-        [0, 4, 6, 2], // x = lo
-        [1, 3, 7, 5], // x = hi
-        [0, 1, 5, 4], // y = lo
-        [2, 6, 7, 3], // y = hi
-    ];
-    for q in quads {
-        let v = |k: usize| *base + q[k] + 1;
-        obj.push_str(&format!(
-            "f {} {} {}\nf {} {} {}\n",
-            v(0),
-            v(1),
-            v(2),
-            v(0),
-            v(2),
-            v(3)
-        ));
-    }
-    *base += 8;
-}
-
 /// A point light inside a glass cube above a white floor: every path from the light to
 /// what the camera sees passes through glass, so only light tracing finds the light.
 fn caustic_scene() -> Scene {
     let d = dir("auto-caustic");
     let mut obj = String::from("mtllib scene.mtl\no floor\nusemtl white\n");
     obj += "v -3 0 -3\nv 3 0 -3\nv 3 0 3\nv -3 0 3\nf 1 4 3\nf 1 3 2\n";
-    obj += "o glass\nusemtl glass\n";
-    let mut base = 4;
-    boxed(&mut obj, &mut base, [-0.4, 0.8, -0.4], [0.4, 1.6, 0.4]);
+    obj += "o glass\n";
+    obj += &common::box_obj([-0.4, 0.8, -0.4], [0.4, 1.6, 0.4], 5, "glass");
     std::fs::write(d.join("scene.obj"), obj).unwrap();
     std::fs::write(
         d.join("scene.mtl"),
