@@ -61,6 +61,7 @@ fn convergence_slope_and_time_to_error() {
         spots: 0,
         largest_share: 0.0,
         budget_missed: missed(seconds, 2.0, t),
+        chosen: String::new(),
     };
     let same: Vec<Row> = [0.25, 0.5, 1.0, 2.0]
         .iter()

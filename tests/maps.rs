@@ -196,6 +196,7 @@ fn pass_settings(paths: usize, seed: u64) -> PassSettings {
         rr_depth: footprint_integrators::walk::RR_START_DEPTH,
         seed,
         soft_glossy_max: 100.0,
+        specialise: true,
     }
 }
 

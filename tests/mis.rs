@@ -68,6 +68,7 @@ fn check_scene(name: &str, guided: bool) -> Vec<[f32; 3]> {
         rr_depth: footprint_integrators::walk::RR_START_DEPTH,
         seed: 3,
         soft_glossy_max: scene.maps.soft_glossy_max,
+        specialise: true,
     };
     let g = Guidance::build(&scene, &method, &params, &pass, &|| None);
     let camera = g.camera_sampler(&scene, &method, &params);

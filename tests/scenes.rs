@@ -65,6 +65,7 @@ fn effect_analysis_is_right_for_each_scene() {
         Effects {
             diffuse: true,
             glossy: true,
+            non_lambertian: true,
             spot_lights: true,
             ..Default::default()
         }

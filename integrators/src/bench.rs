@@ -1,5 +1,7 @@
-//! `footprint bench`: closest-hit rays per second on `door` and path samples per second on
-//! `cornell`, each measured for a fixed time on all threads.
+//! `footprint bench`: closest-hit rays per second on `door`, the maps and samplers, the path
+//! loop compiled for a scene's effects against the general one (cornell, desk and the
+//! `--scene`), and path samples per second on `cornell`, each measured for a fixed time on
+//! all threads.
 
 use anyhow::Result;
 use footprint::rng::Rng;
@@ -69,6 +71,7 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
             rr_depth: footprint_integrators::walk::RR_START_DEPTH,
             seed: 1,
             soft_glossy_max: door.maps.soft_glossy_max,
+            specialise: true,
         };
         let pass = light_pass(&door, &s, &bsdf);
         let t = Instant::now();
@@ -88,6 +91,7 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
         rr_depth: footprint_integrators::walk::RR_START_DEPTH,
         seed: 1,
         soft_glossy_max: door.maps.soft_glossy_max,
+        specialise: true,
     };
     for (kind, pass) in [
         (MapKind::Photons, light_pass(&door, &s, &bsdf)),
@@ -159,6 +163,7 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
             rr_depth: footprint_integrators::walk::RR_START_DEPTH,
             seed: 1,
             soft_glossy_max: door.maps.soft_glossy_max,
+            specialise: true,
         };
         for (method, cache) in [
             ("lt-bsdf", false),
@@ -234,8 +239,42 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
         }
     }
 
+    // ---- The path loop compiled for the scene's effects against the general one ----
+    let desk = load_scene(&scenes.join("desk/desk.toml"))?;
+    let cornell_path = scenes.join("cornell/cornell.toml");
+    let cornell = load_scene(&cornell_path)?;
+    let desk_path = scenes.join("desk/desk.toml");
+    let mut loop_scenes = vec![
+        (cornell_path.as_path(), &cornell),
+        (desk_path.as_path(), &desk),
+    ];
+    loop_scenes.extend(extra);
+    for (path, sc) in loop_scenes {
+        for m in ["pt-bsdf", "lt-bsdf"] {
+            let mut opts = RenderOptions::from_scene(sc).map_err(anyhow::Error::msg)?;
+            opts.method = Method::parse(m).map_err(anyhow::Error::msg)?;
+            opts.time = Some(seconds / 2.0);
+            // Alternating runs, the best of two each: other jobs on the machine slow both.
+            let mut best = [0.0f64; 2];
+            for _ in 0..2 {
+                for (k, specialise) in [false, true].into_iter().enumerate() {
+                    opts.specialise = specialise;
+                    let r = render(sc, &opts, |_| {});
+                    best[k] = best[k].max(r.paths as f64 / r.timings.tracing.as_secs_f64());
+                }
+            }
+            println!(
+                "{}: {m} path loop, general {:.3} M paths/s, specialised ({}) {:.3} M paths/s: ratio {:.3}",
+                path.display(),
+                best[0] / 1e6,
+                opts.specialisation(sc).name(),
+                best[1] / 1e6,
+                best[1] / best[0]
+            );
+        }
+    }
+
     // ---- Path samples on cornell ----
-    let cornell = load_scene(&scenes.join("cornell/cornell.toml"))?;
     let mut opts = RenderOptions::from_scene(&cornell).map_err(anyhow::Error::msg)?;
     opts.method = Method::default();
     opts.time = Some(seconds);

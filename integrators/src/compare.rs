@@ -115,6 +115,8 @@ pub struct Row {
     /// The run took more than the budget (plus [`BUDGET_TOLERANCE`]): its error is not an
     /// equal-time error.
     pub budget_missed: bool,
+    /// The method `auto` chose at this budget (empty for a fixed method).
+    pub chosen: String,
 }
 
 /// The largest single-sample contribution's share of the image (see [`Row::largest_share`]):
@@ -525,7 +527,12 @@ pub fn run(
             }
         };
         let g0 = std::time::Instant::now();
-        let g = guidance(scene, &opts, &|| None);
+        // `auto` chooses at every rung, its pilot inside the rung's budget.
+        let g = if opts.auto.is_some() {
+            crate::maps::Guidance::default()
+        } else {
+            guidance(scene, &opts, &|| None)
+        };
         let maps = g.timings.total();
         if v.opts.method.guided() {
             log(&format!(
@@ -548,7 +555,41 @@ pub fn run(
                 ..opts.clone()
             };
             let r0 = std::time::Instant::now();
-            let r = render_prepared(scene, &opts, &g, maps, StopRule::WithinBudget, |_| {});
+            let (r, maps) = match &opts.auto {
+                Some(spec) => {
+                    let choice = crate::auto::choose(scene, &opts, spec);
+                    log(&format!(
+                        "[{run_index}/{total_runs}] {} chose {} ({:.2} s pilot): {}",
+                        v.label,
+                        choice.method.name(),
+                        choice.pilot.as_secs_f64(),
+                        choice.reason
+                    ));
+                    let chosen = RenderOptions {
+                        method: choice.method,
+                        auto: None,
+                        ..opts.clone()
+                    };
+                    let own;
+                    let g = match &choice.guidance {
+                        Some(g) => g,
+                        None => {
+                            own = guidance(scene, &chosen, &|| None);
+                            &own
+                        }
+                    };
+                    // The pilot and the chosen method's maps are charged to the budget.
+                    let charged = r0.elapsed();
+                    let mut r =
+                        render_prepared(scene, &chosen, g, charged, StopRule::WithinBudget, |_| {});
+                    r.auto = Some(choice.reason);
+                    (r, charged)
+                }
+                None => (
+                    render_prepared(scene, &opts, &g, maps, StopRule::WithinBudget, |_| {}),
+                    maps,
+                ),
+            };
             wall += r0.elapsed().as_secs_f64();
             budgets_done += t;
             let tm = &r.timings;
@@ -581,6 +622,11 @@ pub fn run(
                 spots: spots(&r.image, &reference),
                 largest_share: largest_share(&r),
                 budget_missed,
+                chosen: if r.auto.is_some() {
+                    r.method.name()
+                } else {
+                    String::new()
+                },
             });
             if li + 1 == s.ladder.len() {
                 write_png(&s.out.join(format!("{}.png", v.label)), &r.image, exposure)?;

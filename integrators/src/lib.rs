@@ -2,6 +2,7 @@
 //!
 //! * [`integrator`]: the `Integrator` trait and its registry: path tracing, light tracing,
 //!   and the combined image;
+//! * [`auto`]: the method chosen by a short pilot;
 //! * [`walk`]: the one path loop (vertex, Russian roulette, spawn) that the integrators and
 //!   both particle passes share;
 //! * [`emit`]: where light paths start (light choice, guided emission at area lights);
@@ -15,8 +16,10 @@
 //! * [`render`]: passes, threads, time budgets, progress, and the run summary;
 //! * [`scene_hash`]: the scene's content hash (references, saved maps, shards);
 //! * [`shard`]: which passes a render draws (shard `i` of `N`);
+//! * [`skips`]: what a scene's absent effects let a render skip, and the counters;
 //! * [`compare`]: equal-time comparisons, error against time, parameter sweeps.
 
+pub mod auto;
 pub mod compare;
 pub mod emit;
 pub mod integrator;
@@ -30,6 +33,7 @@ pub mod passes;
 pub mod render;
 pub mod scene_hash;
 pub mod shard;
+pub mod skips;
 pub mod walk;
 
 pub use method::Method;

@@ -46,7 +46,9 @@ fn integrator_values() -> PossibleValuesParser {
     PossibleValuesParser::new(
         INTEGRATORS
             .iter()
-            .map(|i| PossibleValue::new(i.name()).help(i.about())),
+            .map(|i| PossibleValue::new(i.name()).help(i.about()))
+            .chain([PossibleValue::new("auto")
+                .help("Chosen by a short pilot: the method predicted to give the lowest error")]),
     )
 }
 
@@ -55,7 +57,10 @@ fn guide_values() -> PossibleValuesParser {
     PossibleValuesParser::new(
         GUIDES
             .iter()
-            .map(|g| PossibleValue::new(g.name()).help(g.about())),
+            .map(|g| PossibleValue::new(g.name()).help(g.about()))
+            .chain([PossibleValue::new("auto").help(
+                "Chosen by a short pilot (guided candidates when their maps fit the budget)",
+            )]),
     )
 }
 
@@ -147,10 +152,12 @@ enum Command {
     Render {
         /// Scene file: footprint TOML (.toml) or Mitsuba 3 XML (.xml)
         scene: PathBuf,
-        /// Integrator [default: the scene's render.integrator, else pt]
+        /// Integrator [default: the scene's render.integrator; when neither the integrator
+        /// nor the guide is given here or in the scene, auto; else pt]
         #[arg(long, value_parser = integrator_values())]
         integrator: Option<String>,
-        /// Direction sampler [default: the scene's render.guide, else bsdf]
+        /// Direction sampler [default: the scene's render.guide; auto when neither is given;
+        /// else bsdf]
         #[arg(long, value_parser = guide_values())]
         guide: Option<String>,
         /// Samples per pixel (pt) or light paths per pixel (lt) [default: the scene's render.spp, else 16]
@@ -196,6 +203,10 @@ enum Command {
         /// instead of running them; refused if made for another scene or other settings
         #[arg(long = "maps", value_name = "MAPS.fpm")]
         maps_file: Option<PathBuf>,
+        /// Run the general path loop instead of the one compiled for the scene's effects
+        /// (the same image, bit for bit; for measuring what the specialisation gains)
+        #[arg(long)]
+        general_loop: bool,
         #[command(flatten)]
         params: GuideParamArgs,
         #[command(flatten)]
@@ -508,6 +519,7 @@ fn run(cli: Cli) -> Result<()> {
             threads,
             shard,
             maps_file,
+            general_loop,
             guide,
             film,
             params,
@@ -532,14 +544,19 @@ fn run(cli: Cli) -> Result<()> {
             let sc = load_scene_with(&scene, &import, &maps, resolution)?;
             let load_time = t0.elapsed();
             let mut opts = RenderOptions::from_scene(&sc).map_err(anyhow::Error::msg)?;
-            if let Some(i) = integrator {
-                opts.method.integrator = Method::integrator(&i).map_err(anyhow::Error::msg)?;
-            }
-            if let Some(g) = guide {
-                opts.method.guide = Method::guide(&g).map_err(anyhow::Error::msg)?;
+            let neither = integrator.is_none()
+                && guide.is_none()
+                && sc.settings.integrator.is_none()
+                && sc.settings.guide.is_none();
+            opts.apply_names(integrator.as_deref(), guide.as_deref())
+                .map_err(anyhow::Error::msg)?;
+            // A shard keeps the fixed default (pt, bsdf): every shard must render one method.
+            if neither && shard.is_none() {
+                opts.auto = Some(footprint_integrators::auto::AutoSpec::all());
             }
             params.apply(&mut opts.guide_params)?;
             opts.film = film;
+            opts.specialise = !general_loop;
             if let Some(s) = spp {
                 opts.spp = s;
                 opts.time = None;
@@ -681,7 +698,7 @@ fn run(cli: Cli) -> Result<()> {
             let methods = methods.unwrap_or(default_methods);
             let parsed = methods
                 .iter()
-                .map(|m| Method::parse(m).map_err(|e| anyhow::anyhow!("--methods: {e}")))
+                .map(|m| Method::parse_request(m).map_err(|e| anyhow::anyhow!("--methods: {e}")))
                 .collect::<Result<Vec<_>>>()?;
             let variants = compare_variants(&parsed, &base, &sc, sweep.as_deref())?;
             let stem = scene
@@ -801,13 +818,13 @@ fn run(cli: Cli) -> Result<()> {
 
 /// The curves of a comparison: each method once, or once per value of a swept parameter.
 fn compare_variants(
-    methods: &[Method],
+    methods: &[(Method, Option<footprint_integrators::auto::AutoSpec>)],
     base: &RenderOptions,
     scene: &Scene,
     sweep: Option<&str>,
 ) -> Result<Vec<footprint_integrators::compare::Variant>> {
     use footprint_integrators::compare::Variant;
-    let make = |m: &Method,
+    let make = |(m, auto): &(Method, Option<footprint_integrators::auto::AutoSpec>),
                 label: String,
                 opts: RenderOptions,
                 maps: footprint::settings::MapSettings|
@@ -819,14 +836,21 @@ fn compare_variants(
             .map_err(|e| anyhow::anyhow!("--sweep: {e}"))?;
         Ok(Variant {
             label,
-            opts: RenderOptions { method: *m, ..opts },
+            opts: RenderOptions {
+                method: *m,
+                auto: auto.clone(),
+                ..opts
+            },
             maps,
         })
     };
     let Some(sweep) = sweep else {
         return methods
             .iter()
-            .map(|m| make(m, m.name(), base.clone(), scene.maps.clone()))
+            .map(|m| {
+                let label = m.1.as_ref().map(|a| a.label.clone()).unwrap_or(m.0.name());
+                make(m, label, base.clone(), scene.maps.clone())
+            })
             .collect();
     };
     let (name, values) = sweep
@@ -859,7 +883,11 @@ fn compare_variants(
             }
             out.push(make(
                 m,
-                format!("{}@{}={v}", m.name(), name.trim()),
+                format!(
+                    "{}@{}={v}",
+                    m.1.as_ref().map(|a| a.label.clone()).unwrap_or(m.0.name()),
+                    name.trim()
+                ),
                 opts,
                 maps,
             )?);
@@ -888,6 +916,7 @@ fn maps_command(
         rr_depth: footprint_integrators::walk::RR_START_DEPTH,
         seed: seed.unwrap_or(scene.settings.seed),
         soft_glossy_max: scene.maps.soft_glossy_max,
+        specialise: true,
     };
     println!(
         "maximum query distance {:.4} (scene units)",
@@ -942,7 +971,7 @@ fn maps_command(
 fn render_command(
     scene_path: &Path,
     scene: &Scene,
-    opts: RenderOptions,
+    mut opts: RenderOptions,
     out: &Path,
     maps_file: Option<&Path>,
     exposure: f32,
@@ -978,8 +1007,9 @@ fn render_command(
             load_s
         );
         eprintln!("effects: {}", effects.join(", "));
+        eprintln!("path loop: {}", opts.specialisation(scene).name());
         for s in scene.effects.skipped() {
-            eprintln!("skipped: {s}");
+            eprintln!("skips: {s}");
         }
     }
     if scene.stats.degenerate_skipped > 0 {
@@ -1003,7 +1033,31 @@ fn render_command(
     };
     let scene_hash = scene_content_hash(scene_path, scene)?;
     let start = Instant::now();
-    let guidance = match maps_file.filter(|_| opts.method.guided()) {
+    // ---- auto: the pilot chooses the method; its time counts in the budget ----
+    let mut auto_reason = None;
+    let mut piloted = None;
+    if let Some(spec) = opts.auto.take() {
+        if !opts.passes.is_all() {
+            bail!(
+                "--shard needs a fixed method: every shard must render the same one (give --integrator and --guide)"
+            );
+        }
+        let choice = footprint_integrators::auto::choose(scene, &opts, &spec);
+        eprintln!(
+            "auto ({}): {} ({:.2} s pilot): {}",
+            spec.label,
+            choice.method.name(),
+            choice.pilot.as_secs_f64(),
+            choice.reason
+        );
+        opts.method = choice.method;
+        auto_reason = Some(format!("{}: {}", spec.label, choice.reason));
+        piloted = choice.guidance;
+        if let Some(b) = &bar {
+            b.set_message(format!("auto: {}", opts.method.name()));
+        }
+    }
+    let guidance = match maps_file.filter(|_| opts.method.guided() && piloted.is_none()) {
         Some(path) => {
             let key = footprint_integrators::maps_file::maps_key(
                 &scene_hash,
@@ -1022,6 +1076,7 @@ fn render_command(
             }
             Guidance::from_passes(scene, &opts.method, &opts.guide_params, passes, &heap_bytes)
         }
+        None if piloted.is_some() => piloted.take().expect("checked"),
         None => {
             if maps_file.is_some() {
                 eprintln!(
@@ -1035,6 +1090,7 @@ fn render_command(
                 rr_depth: footprint_integrators::walk::RR_START_DEPTH,
                 seed: opts.seed,
                 soft_glossy_max: scene.maps.soft_glossy_max,
+                specialise: true,
             };
             Guidance::build(scene, &opts.method, &opts.guide_params, &pass, &heap_bytes)
         }
@@ -1134,6 +1190,10 @@ fn render_command(
         ),
     ];
     let mut header = header;
+    header.push(("footprint/skipped".into(), result.skipped.join("; ")));
+    if let Some(a) = &auto_reason {
+        header.push(("footprint/auto".into(), a.clone()));
+    }
     if let Some(path) = maps_file.filter(|_| opts.method.guided()) {
         header.push(("footprint/maps_file".into(), path.display().to_string()));
         header.push((
@@ -1165,6 +1225,9 @@ fn render_command(
         };
         g("camera paths", &result.camera_guide);
         g("light paths", &result.light_guide);
+        for s in &result.skipped {
+            eprintln!("skipped: {s}");
+        }
         eprintln!(
             "time: view pass {:.2} s, light pass {:.2} s, map builds {:.2} s, cache builds {:.2} s, tracing {:.2} s",
             t.maps.view_pass.as_secs_f64(),

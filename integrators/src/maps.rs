@@ -88,6 +88,8 @@ pub struct Guidance {
     pub timings: MapTimings,
     /// One line per map and cache built.
     pub summaries: Vec<String>,
+    /// The passes the scene's effects made useless ([`crate::skips`], rule 4).
+    pub skipped: Vec<String>,
 }
 
 /// What the passes of one render produced (the particles, the other pass's seeds, the
@@ -261,6 +263,13 @@ impl Guidance {
         pass: &PassSettings,
         heap: &dyn Fn() -> Option<usize>,
     ) -> Self {
+        let (light, view) = needed_passes(method, params);
+        if pass.specialise && (light || view) && !crate::skips::particles_stored(scene) {
+            return Guidance {
+                skipped: vec![crate::skips::maps_skipped(light as usize + view as usize)],
+                ..Default::default()
+            };
+        }
         let passes = run_passes(scene, method, params, pass);
         Self::from_passes(scene, method, params, passes, heap)
     }

@@ -35,8 +35,10 @@ use footprint::guide::particle_map::ParticleInput;
 use footprint::guide::sampler::{DirectionSample, GuidedSampler, SamplerState};
 use footprint::rng::Rng;
 use footprint::scene::Scene;
+use footprint::scene::features::{Features, Specialisation};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
+use std::marker::PhantomData;
 use std::time::{Duration, Instant};
 
 /// Settings of one pass.
@@ -52,6 +54,20 @@ pub struct PassSettings {
     /// Blinn exponents up to this count as "soft glossy" and store particles; above it a
     /// surface is "strongly glossy" and is treated like a specular one.
     pub soft_glossy_max: f32,
+    /// Run the path loop compiled for the scene's effects (else the general one; the same
+    /// particles either way, `footprint::scene::features`).
+    pub specialise: bool,
+}
+
+impl PassSettings {
+    /// The compiled loop the pass runs in.
+    pub fn specialisation(&self, scene: &Scene) -> Specialisation {
+        if self.specialise {
+            Specialisation::for_effects(&scene.effects)
+        } else {
+            Specialisation::General
+        }
+    }
 }
 
 /// Flux (or importance) accounting of a pass, per bounce.
@@ -105,13 +121,16 @@ struct ChunkOut {
 }
 
 /// Stores particles along a walk.
-struct Storing<'o> {
+struct Storing<'o, F> {
     soft_glossy_max: f32,
     specular_chain: bool,
     out: &'o mut ChunkOut,
+    features: PhantomData<F>,
 }
 
-impl Visitor for Storing<'_> {
+impl<F: Features> Visitor for Storing<'_, F> {
+    type F = F;
+
     fn escaped(&mut self, _dir: Vec3, beta: Rgb, depth: u32, _from: &Arrival) {
         let k = depth as usize - 1;
         if self.out.escaped.len() <= k {
@@ -190,12 +209,15 @@ fn trace<'a>(
     rng: &mut Rng,
     out: &mut ChunkOut,
 ) {
-    let mut v = Storing {
-        soft_glossy_max: s.soft_glossy_max,
-        specular_chain: true,
-        out,
-    };
-    walk(scene, start, sampler, state, rng, &mut v);
+    crate::specialised!(s.specialisation(scene), F => {
+        let mut v = Storing::<F> {
+            soft_glossy_max: s.soft_glossy_max,
+            specular_chain: true,
+            out,
+            features: PhantomData,
+        };
+        walk(scene, start, sampler, state, rng, &mut v);
+    });
 }
 
 /// The light pass: a photon map's particles. `sampler` chooses the directions (BSDF

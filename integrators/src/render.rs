@@ -9,6 +9,7 @@
 //! the number of threads. A shard ([`RenderOptions::passes`], [`crate::shard`]) draws only
 //! the passes `k` it owns, with the same streams, so shards add up to one run.
 
+use crate::auto::AutoSpec;
 use crate::integrator::Context;
 use crate::maps::{Guidance, MapTimings};
 use crate::method::Method;
@@ -20,6 +21,7 @@ use footprint::film::{Film, FilmMode, Image, SampleStats, SplatList};
 use footprint::guide::sampler::SamplerState;
 use footprint::rng::Rng;
 use footprint::scene::Scene;
+use footprint::scene::features::Specialisation;
 use footprint::settings::GuideParams;
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
@@ -42,6 +44,12 @@ pub struct RenderOptions {
     /// Which of the passes `0..spp` to draw (a shard, [`crate::shard`]); all by default. With
     /// a time budget, the selection's passes in order until the time is spent.
     pub passes: PassSelection,
+    /// Run the path loop compiled for the scene's effects (the default) or the general one:
+    /// the same image for a fixed seed, bit for bit (`footprint::scene::features`).
+    pub specialise: bool,
+    /// Choose the method by a pilot among these candidates (`auto`, [`crate::auto`]);
+    /// `method` is then replaced by the choice.
+    pub auto: Option<AutoSpec>,
 }
 
 impl Default for RenderOptions {
@@ -57,17 +65,31 @@ impl Default for RenderOptions {
             rr_depth: crate::walk::RR_START_DEPTH,
             seed: 0,
             passes: PassSelection::ALL,
+            specialise: true,
+            auto: None,
         }
     }
 }
 
 impl RenderOptions {
+    /// The compiled path loop this render runs in: the narrowest one for the scene's
+    /// effects, or the general one when `specialise` is off.
+    pub fn specialisation(&self, scene: &Scene) -> Specialisation {
+        if self.specialise {
+            Specialisation::for_effects(&scene.effects)
+        } else {
+            Specialisation::General
+        }
+    }
+
     /// Options from the scene file's render and guide settings; an unknown integrator or
     /// guide name is an error naming its place in the file.
     pub fn from_scene(scene: &Scene) -> Result<Self, String> {
         let s = &scene.settings;
+        let (method, auto) = Method::request_from_scene(scene)?;
         Ok(RenderOptions {
-            method: Method::from_scene(scene)?,
+            method,
+            auto,
             film: FilmMode::Splat,
             guide_params: scene.guide.clone(),
             spp: s.spp,
@@ -76,7 +98,56 @@ impl RenderOptions {
             rr_depth: s.rr_depth,
             seed: s.seed,
             passes: PassSelection::ALL,
+            specialise: true,
         })
+    }
+
+    /// Applies an integrator and a guide given by name (`None`: keep; `auto`: chosen by the
+    /// pilot, the other kept fixed unless it is `auto` too).
+    pub fn apply_names(
+        &mut self,
+        integrator: Option<&str>,
+        guide: Option<&str>,
+    ) -> Result<(), String> {
+        if integrator.is_none() && guide.is_none() {
+            return Ok(());
+        }
+        // What is fixed so far: the previous choice, unless it was auto.
+        let fixed_i = match &self.auto {
+            Some(a) if a.label.starts_with("auto") => None,
+            _ => Some(self.method),
+        };
+        let fixed_g = match &self.auto {
+            Some(a) if a.label.ends_with("auto") => None,
+            _ => Some(self.method),
+        };
+        let i = match integrator {
+            Some("auto") => None,
+            Some(n) => Some(Method {
+                integrator: Method::integrator(n)?,
+                ..self.method
+            }),
+            None => fixed_i,
+        };
+        let g = match guide {
+            Some("auto") => None,
+            Some(n) => Some(Method {
+                guide: Method::guide(n)?,
+                ..self.method
+            }),
+            None => fixed_g,
+        };
+        match (i, g) {
+            (Some(i), Some(g)) => {
+                self.method = Method {
+                    integrator: i.integrator,
+                    guide: g.guide,
+                };
+                self.auto = None;
+            }
+            _ => self.auto = Some(AutoSpec::new(i, g)),
+        }
+        Ok(())
     }
 }
 
@@ -85,20 +156,46 @@ impl RenderOptions {
 pub struct Timings {
     pub maps: MapTimings,
     pub tracing: Duration,
+    /// Of the tracing, the camera paths' and the light paths' share.
+    pub camera_paths: Duration,
+    pub light_paths: Duration,
     pub total: Duration,
 }
 
-/// Counts of guided scattering events and of fallbacks to BSDF sampling.
+/// Counts of guided scattering events and of fallbacks to BSDF sampling, and of the surface
+/// hits and escaping rays of the paths (what the skip counters are made of).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct GuideCounts {
     pub prepared: u64,
     pub fallbacks: u64,
+    pub vertices: u64,
+    pub escapes: u64,
 }
 
 impl GuideCounts {
-    fn add(&mut self, s: &SamplerState) {
-        self.prepared += s.prepared_events;
-        self.fallbacks += s.fallbacks;
+    fn of(s: &SamplerState) -> Self {
+        GuideCounts {
+            prepared: s.prepared_events,
+            fallbacks: s.fallbacks,
+            vertices: s.vertices,
+            escapes: s.escapes,
+        }
+    }
+
+    fn add(&mut self, o: &GuideCounts) {
+        self.prepared += o.prepared;
+        self.fallbacks += o.fallbacks;
+        self.vertices += o.vertices;
+        self.escapes += o.escapes;
+    }
+
+    fn minus(&self, o: &GuideCounts) -> Self {
+        GuideCounts {
+            prepared: self.prepared - o.prepared,
+            fallbacks: self.fallbacks - o.fallbacks,
+            vertices: self.vertices - o.vertices,
+            escapes: self.escapes - o.escapes,
+        }
     }
 }
 
@@ -124,6 +221,12 @@ pub struct RenderResult {
     pub light_guide: GuideCounts,
     /// Summaries of the maps and caches built.
     pub maps: Vec<String>,
+    /// What the scene's absent effects let the render skip, with counts ([`crate::skips`]).
+    pub skipped: Vec<String>,
+    /// The method rendered (`auto`'s choice when it chose).
+    pub method: Method,
+    /// Why `auto` chose it.
+    pub auto: Option<String>,
 }
 
 /// Stream domains, so that camera and light paths never share random numbers.
@@ -158,6 +261,7 @@ pub fn guidance(scene: &Scene, opts: &RenderOptions, heap: &dyn Fn() -> Option<u
         rr_depth: opts.rr_depth,
         seed: opts.seed,
         soft_glossy_max: scene.maps.soft_glossy_max,
+        specialise: opts.specialise,
     };
     Guidance::build(scene, &opts.method, &opts.guide_params, &pass, heap)
 }
@@ -171,6 +275,22 @@ pub fn render_with(
     on_progress: impl FnMut(f64),
 ) -> RenderResult {
     let start = Instant::now();
+    if let Some(spec) = &opts.auto {
+        // The pilot, then the chosen method for the rest of the budget (from `start`).
+        let choice = crate::auto::choose(scene, opts, spec);
+        let chosen = RenderOptions {
+            method: choice.method,
+            auto: None,
+            ..opts.clone()
+        };
+        let g = match choice.guidance {
+            Some(g) => g,
+            None => guidance(scene, &chosen, heap),
+        };
+        let mut r = render_guided(scene, &chosen, &g, start, on_progress);
+        r.auto = Some(choice.reason);
+        return r;
+    }
     // ---- Particle maps and guide caches: only those the method uses ----
     let guidance = guidance(scene, opts, heap);
     render_guided(scene, opts, &guidance, start, on_progress)
@@ -241,6 +361,7 @@ fn trace(
         camera_sampler: guidance.camera_sampler(scene, &opts.method, &opts.guide_params),
         light_sampler: guidance.light_sampler(scene, &opts.method, &opts.guide_params),
         guided_mis: opts.guide_params.guided_mis,
+        specialisation: opts.specialisation(scene),
     };
 
     // ---- Passes ----
@@ -252,6 +373,7 @@ fn trace(
     let mut camera_guide = GuideCounts::default();
     let mut light_guide = GuideCounts::default();
     let mut passes = 0u32;
+    let (mut camera_time, mut light_time) = (Duration::ZERO, Duration::ZERO);
     let budget = opts.passes.passes_of(opts.spp);
     assert!(
         opts.time.is_some() || budget > 0,
@@ -264,6 +386,7 @@ fn trace(
     loop {
         // The stream index of this pass (a shard draws every `count`-th pass).
         let k = opts.passes.pass(passes) as u64;
+        let camera_start = Instant::now();
         if paths.camera {
             // Splatting and filter importance sampling coincide for the box filter; the
             // box keeps the cheaper per-pixel accumulation.
@@ -271,7 +394,7 @@ fn trace(
             let rows: Vec<(Vec<Rgb>, Vec<SplatList>, GuideCounts)> = (0..cam.height)
                 .into_par_iter()
                 .map_init(SamplerState::default, |state, y| {
-                    let before = (state.prepared_events, state.fallbacks);
+                    let before = GuideCounts::of(state);
                     let mut row = vec![Rgb::ZERO; cam.width as usize * layers.len()];
                     let mut splats =
                         vec![SplatList::default(); if splat { layers.len() } else { 0 }];
@@ -295,10 +418,7 @@ fn trace(
                             }
                         }
                     }
-                    let counts = GuideCounts {
-                        prepared: state.prepared_events - before.0,
-                        fallbacks: state.fallbacks - before.1,
-                    };
+                    let counts = GuideCounts::of(state).minus(&before);
                     (row, splats, counts)
                 })
                 .collect();
@@ -314,10 +434,11 @@ fn trace(
                 }
             }
             for r in &rows {
-                camera_guide.prepared += r.2.prepared;
-                camera_guide.fallbacks += r.2.fallbacks;
+                camera_guide.add(&r.2);
             }
         }
+        camera_time += camera_start.elapsed();
+        let light_start = Instant::now();
         if paths.light {
             let chunks = npix.div_ceil(LT_CHUNK);
             let lists: Vec<(Vec<SplatList>, GuideCounts)> = (0..chunks)
@@ -330,19 +451,17 @@ fn trace(
                         let mut rng = Rng::new(opts.seed, DOMAIN_LIGHT, index);
                         integrator.light_path(&ctx, &mut rng, &mut state, &mut splats);
                     }
-                    let mut counts = GuideCounts::default();
-                    counts.add(&state);
-                    (splats, counts)
+                    (splats, GuideCounts::of(&state))
                 })
                 .collect();
             for (splats, counts) in &lists {
                 for (film, s) in films.iter_mut().zip(splats) {
                     film.add_splats(s);
                 }
-                light_guide.prepared += counts.prepared;
-                light_guide.fallbacks += counts.fallbacks;
+                light_guide.add(counts);
             }
         }
+        light_time += light_start.elapsed();
         passes += 1;
         let elapsed = elapsed_since(start);
         let pass_time = elapsed - last_pass_end;
@@ -379,6 +498,13 @@ fn trace(
         })
         .collect();
     let total_paths = passes as u64 * npix as u64 * (paths.camera as u64 + paths.light as u64);
+    let mut skipped = guidance.skipped.clone();
+    skipped.extend(crate::skips::counted(
+        scene,
+        ctx.specialisation,
+        paths.camera.then_some(&camera_guide),
+        total_paths,
+    ));
     let elapsed = charged + start.elapsed();
     RenderResult {
         image: layer_images[0].1.clone(),
@@ -389,11 +515,16 @@ fn trace(
         timings: Timings {
             maps: guidance.timings.clone(),
             tracing,
+            camera_paths: camera_time,
+            light_paths: light_time,
             total: elapsed,
         },
         stats,
         camera_guide,
         light_guide,
         maps: guidance.summaries.clone(),
+        skipped,
+        method: opts.method,
+        auto: None,
     }
 }

@@ -9,6 +9,13 @@
 //! light) to it: the first hit has depth 1. The walk visits vertices up to
 //! `max_vertex_depth` and scatters only from vertices below it.
 //!
+//! **Specialised once per render.** The loop and its visitors are generic over a
+//! [`Features`] type (the visitor's [`Visitor::F`]): the effects the scene can show. A render
+//! picks the narrowest compiled loop for its scene's effect set
+//! ([`Specialisation::for_effects`]) and [`specialised!`] turns that choice into the type,
+//! in one match; for a fixed seed every instantiation gives the same image, bit for bit
+//! (`footprint::scene::features`).
+//!
 //! **Russian roulette, one rule** for every walk: after scattering at a vertex of depth
 //! `rr_depth` ([`RR_START_DEPTH`] by default) or more, the path continues with probability
 //! `q = clamp(max_c β_c / max_c β_0, 0.05, 1)` (β the throughput after scattering, β_0 the
@@ -24,6 +31,9 @@ use footprint::bsdf::{Bsdf, TransportMode};
 use footprint::guide::sampler::{DirectionSample, GuidedSampler, SamplerState, ScatterPoint};
 use footprint::rng::Rng;
 use footprint::scene::Scene;
+use footprint::scene::features::Features;
+#[allow(unused_imports)] // the doc links
+use footprint::scene::features::Specialisation;
 use footprint::scene::geometry::{SurfaceHit, spawn_origin};
 use glam::Vec3;
 
@@ -60,8 +70,33 @@ pub struct Arrival {
     pub delta: bool,
 }
 
+/// Runs `$body` with the type `$F` bound to the [`Features`] of the compiled loop
+/// `$which` (a [`Specialisation`]): the one place where a render's choice of loop becomes
+/// a type.
+#[macro_export]
+macro_rules! specialised {
+    ($which:expr, $F:ident => $body:expr) => {
+        match $which {
+            ::footprint::scene::features::Specialisation::LambertArea => {
+                type $F = ::footprint::scene::features::LambertArea;
+                $body
+            }
+            ::footprint::scene::features::Specialisation::Untextured => {
+                type $F = ::footprint::scene::features::Untextured;
+                $body
+            }
+            ::footprint::scene::features::Specialisation::General => {
+                type $F = ::footprint::scene::features::General;
+                $body
+            }
+        }
+    };
+}
+
 /// What a walk's owner does along it. Every method has a default that does nothing.
 pub trait Visitor {
+    /// The effects the walk is compiled for.
+    type F: Features;
     /// The ray along `dir` from `from.prev_p` left the scene; `beta` is its throughput and
     /// `depth` the segment count it would have closed.
     fn escaped(&mut self, _dir: Vec3, _beta: Rgb, _depth: u32, _from: &Arrival) {}
@@ -100,13 +135,13 @@ pub struct Start {
 
 /// Walks from `start` until the path leaves the scene, reaches `max_vertex_depth`, fails
 /// to sample a direction or is terminated by Russian roulette.
-pub fn walk<'a>(
+pub fn walk<'a, V: Visitor>(
     scene: &Scene,
     start: &Start,
     sampler: &GuidedSampler<'a>,
     state: &mut SamplerState<'a>,
     rng: &mut Rng,
-    visitor: &mut impl Visitor,
+    visitor: &mut V,
 ) {
     let beta0_max = start.beta0.max_element().max(f32::MIN_POSITIVE);
     let mut origin = start.origin;
@@ -120,12 +155,14 @@ pub fn walk<'a>(
         delta: true,
     };
     for depth in 1..=start.max_vertex_depth {
-        let Some(hit) = scene.intersect(origin, dir, f32::INFINITY) else {
+        let Some(hit) = scene.intersect_with::<V::F>(origin, dir, f32::INFINITY) else {
+            state.escapes += 1;
             visitor.escaped(dir, beta, depth, &from);
             return;
         };
+        state.vertices += 1;
         let v = Vertex {
-            bsdf: scene.bsdf(&hit),
+            bsdf: scene.bsdf_with::<V::F>(&hit),
             hit,
             wo: -dir,
             depth,
@@ -146,7 +183,7 @@ pub fn walk<'a>(
         };
         sampler.prepare(&at, state);
         visitor.before_scatter(&v, &at, sampler, state, rng);
-        let Some(s) = sampler.sample(&at, state, rng) else {
+        let Some(s) = sampler.sample_with::<V::F>(&at, state, rng) else {
             return;
         };
         beta *= s.weight;

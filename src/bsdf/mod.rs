@@ -53,6 +53,7 @@ use crate::bsdf::microfacet::MicrofacetDistribution;
 use crate::bsdf::rough_plastic::RoughPlasticTables;
 use crate::math::{Frame, INV_PI, PI, Rgb, luminance, safe_sqrt};
 use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
+use crate::scene::features::{Features, General};
 use glam::{Vec2, Vec3};
 
 pub use crate::bsdf::fresnel::{fresnel_conductor, fresnel_dielectric};
@@ -518,9 +519,46 @@ impl Bsdf {
         Some((lo, li))
     }
 
+    /// True when every lobe is a delta distribution, compiled for the effects `F` (false
+    /// without specular surfaces).
+    #[inline]
+    pub fn is_delta_with<F: Features>(&self) -> bool {
+        F::SPECULAR && self.lobes.is_delta()
+    }
+
+    /// The Lambertian fast path's cosines: `(lo.z, li.z)` of [`Bsdf::reflection_local`],
+    /// each the same dot product the frame transform makes, without the tangential parts
+    /// the Lambertian lobe does not read.
+    #[inline]
+    fn lambert_cosines(&self, wo: Vec3, wi: Vec3) -> Option<(f32, f32)> {
+        if wo.dot(self.ng) * wi.dot(self.ng) <= 0.0 {
+            return None;
+        }
+        let side = self.reflection_side(wo);
+        let (lo, li) = (wo.dot(self.frame.z) * side, wi.dot(self.frame.z) * side);
+        if lo <= 0.0 || li <= 0.0 {
+            return None;
+        }
+        Some((lo, li))
+    }
+
     /// `f(wo, wi)`; zero for delta lobes.
     pub fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
-        if self.lobes.is_delta() {
+        self.eval_with::<General>(wo, wi, mode)
+    }
+
+    /// [`Bsdf::eval`] compiled for the effects `F`.
+    #[inline]
+    pub fn eval_with<F: Features>(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+        if F::LAMBERTIAN {
+            if let Lobes::Diffuse { kd } = self.lobes {
+                return match self.lambert_cosines(wo, wi) {
+                    Some(_) => kd * INV_PI * self.adjoint_correction(wo, wi, mode),
+                    None => Rgb::ZERO,
+                };
+            }
+        }
+        if self.is_delta_with::<F>() {
             return Rgb::ZERO;
         }
         let f = match self.reflection_local(wo, wi) {
@@ -533,7 +571,21 @@ impl Bsdf {
     /// Density per steradian with which [`Bsdf::sample`] returns `wi` from its non-delta
     /// lobes (times their probability); zero for delta lobes.
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        if self.lobes.is_delta() {
+        self.pdf_with::<General>(wo, wi)
+    }
+
+    /// [`Bsdf::pdf`] compiled for the effects `F`.
+    #[inline]
+    pub fn pdf_with<F: Features>(&self, wo: Vec3, wi: Vec3) -> f32 {
+        if F::LAMBERTIAN {
+            if let Lobes::Diffuse { .. } = self.lobes {
+                return match self.lambert_cosines(wo, wi) {
+                    Some((_, li)) => cosine_hemisphere_pdf(li),
+                    None => 0.0,
+                };
+            }
+        }
+        if self.is_delta_with::<F>() {
             return 0.0;
         }
         match self.reflection_local(wo, wi) {
@@ -573,6 +625,56 @@ impl Bsdf {
 
     /// Samples `wi` given `wo`, with one number to choose a lobe and two for the direction.
     pub fn sample(
+        &self,
+        wo: Vec3,
+        u_lobe: f32,
+        u: Vec2,
+        mode: TransportMode,
+    ) -> Option<BsdfSample> {
+        self.sample_with::<General>(wo, u_lobe, u, mode)
+    }
+
+    /// [`Bsdf::sample`] compiled for the effects `F`: the Lambertian fast path evaluates
+    /// `f` and the pdf from one set of cosines (the same operations as the general path).
+    #[inline]
+    pub fn sample_with<F: Features>(
+        &self,
+        wo: Vec3,
+        u_lobe: f32,
+        u: Vec2,
+        mode: TransportMode,
+    ) -> Option<BsdfSample> {
+        if F::LAMBERTIAN {
+            if let Lobes::Diffuse { kd } = self.lobes {
+                let side = self.reflection_side(wo);
+                if wo.dot(self.frame.z) * side <= 0.0 {
+                    return None;
+                }
+                let li = sample_cosine_hemisphere(u);
+                if li.z <= 0.0 {
+                    return None;
+                }
+                let wi = self.frame.to_world(Vec3::new(li.x, li.y, li.z * side));
+                let (_, cos_i) = self.lambert_cosines(wo, wi)?;
+                let pdf_w = cosine_hemisphere_pdf(cos_i);
+                let f = kd * INV_PI * self.adjoint_correction(wo, wi, mode);
+                if pdf_w <= 0.0 || !pdf_w.is_finite() || f.max_element() <= 0.0 {
+                    return None;
+                }
+                let weight = f * (wi.dot(self.frame.z).abs() / pdf_w);
+                return Some(BsdfSample {
+                    wi,
+                    f,
+                    pdf_w,
+                    weight,
+                    delta: false,
+                });
+            }
+        }
+        self.sample_general(wo, u_lobe, u, mode)
+    }
+
+    fn sample_general(
         &self,
         wo: Vec3,
         u_lobe: f32,

@@ -24,6 +24,7 @@ use crate::guide::particle_map::{Neighbor, ParticleMap};
 use crate::guide::{ChannelMix, Guide, GuideDistribution, GuideParticle, guides_at};
 use crate::math::{Frame, is_valid_rgb, luminance};
 use crate::rng::Rng;
+use crate::scene::features::{Features, General};
 use crate::settings::GuideParams;
 use glam::Vec3;
 
@@ -124,6 +125,10 @@ pub struct SamplerState<'a> {
     pub prepared_events: u64,
     /// Of those, the events that fell back to BSDF sampling (no region, too few particles).
     pub fallbacks: u64,
+    /// Surface hits and rays that left the scene, counted by the path loop that owns this
+    /// state (what the run summary's skip counters are made of).
+    pub vertices: u64,
+    pub escapes: u64,
 }
 
 impl SamplerState<'_> {
@@ -257,14 +262,25 @@ impl<'a> GuidedSampler<'a> {
         state: &SamplerState,
         rng: &mut Rng,
     ) -> Option<DirectionSample> {
+        self.sample_with::<General>(at, state, rng)
+    }
+
+    /// [`GuidedSampler::sample`] compiled for the effects `F`.
+    #[inline]
+    pub fn sample_with<F: Features>(
+        &self,
+        at: &ScatterPoint,
+        state: &SamplerState,
+        rng: &mut Rng,
+    ) -> Option<DirectionSample> {
         let guide = match (state.distribution(), state.mix) {
-            (Some(d), Some(mix)) if !at.bsdf.is_delta() => Some((d, mix)),
+            (Some(d), Some(mix)) if !at.bsdf.is_delta_with::<F>() => Some((d, mix)),
             _ => None,
         };
         let Some((dist, mix)) = guide else {
             let s = at
                 .bsdf
-                .sample(at.wo, rng.uniform(), rng.uniform2(), at.mode)?;
+                .sample_with::<F>(at.wo, rng.uniform(), rng.uniform2(), at.mode)?;
             return Some(DirectionSample {
                 wi: s.wi,
                 pdf_w: s.pdf_w,
@@ -275,12 +291,12 @@ impl<'a> GuidedSampler<'a> {
         };
         let wi = if rng.uniform() < self.params.p_bsdf {
             at.bsdf
-                .sample(at.wo, rng.uniform(), rng.uniform2(), at.mode)?
+                .sample_with::<F>(at.wo, rng.uniform(), rng.uniform2(), at.mode)?
                 .wi
         } else {
             dist.sample(&mix, rng)?
         };
-        let bsdf_pdf = at.bsdf.pdf(at.wo, wi);
+        let bsdf_pdf = at.bsdf.pdf_with::<F>(at.wo, wi);
         let p = self.params.p_bsdf;
         let pdf_w = p * bsdf_pdf + (1.0 - p) * dist.pdf(&mix, wi);
         if !(pdf_w > 0.0 && pdf_w.is_finite()) {
@@ -289,7 +305,7 @@ impl<'a> GuidedSampler<'a> {
         // A direction the BSDF does not scatter into (a footprint across the horizon of an
         // opaque surface) is still a draw: it comes back with zero weight, so that what
         // `sample` draws is exactly the density `pdf` describes.
-        let fc = at.bsdf.eval(at.wo, wi, at.mode) * wi.dot(at.bsdf.frame.z).abs();
+        let fc = at.bsdf.eval_with::<F>(at.wo, wi, at.mode) * wi.dot(at.bsdf.frame.z).abs();
         let valid = |w: Rgb| if is_valid_rgb(w) { w } else { Rgb::ZERO };
         let weight = valid(fc / pdf_w);
         Some(DirectionSample {
@@ -306,7 +322,7 @@ impl<'a> GuidedSampler<'a> {
     }
 
     #[inline]
-    fn mixture_pdf(
+    fn mixture_pdf<F: Features>(
         &self,
         at: &ScatterPoint,
         dist: &dyn GuideDistribution,
@@ -314,7 +330,7 @@ impl<'a> GuidedSampler<'a> {
         wi: Vec3,
     ) -> f32 {
         let p = self.params.p_bsdf;
-        p * at.bsdf.pdf(at.wo, wi) + (1.0 - p) * dist.pdf(mix, wi)
+        p * at.bsdf.pdf_with::<F>(at.wo, wi) + (1.0 - p) * dist.pdf(mix, wi)
     }
 
     /// The density with which this sampler draws `wi` at `at` for a path of white colour (the
@@ -346,9 +362,17 @@ impl<'a> GuidedSampler<'a> {
 
     /// Density per steradian with which `sample` returns `wi` (0 for delta BSDFs).
     pub fn pdf(&self, at: &ScatterPoint, state: &SamplerState, wi: Vec3) -> f32 {
+        self.pdf_with::<General>(at, state, wi)
+    }
+
+    /// [`GuidedSampler::pdf`] compiled for the effects `F`.
+    #[inline]
+    pub fn pdf_with<F: Features>(&self, at: &ScatterPoint, state: &SamplerState, wi: Vec3) -> f32 {
         match (state.distribution(), &state.mix) {
-            (Some(d), Some(mix)) if !at.bsdf.is_delta() => self.mixture_pdf(at, d, mix, wi),
-            _ => at.bsdf.pdf(at.wo, wi),
+            (Some(d), Some(mix)) if !at.bsdf.is_delta_with::<F>() => {
+                self.mixture_pdf::<F>(at, d, mix, wi)
+            }
+            _ => at.bsdf.pdf_with::<F>(at.wo, wi),
         }
     }
 }

@@ -15,6 +15,11 @@ pub struct Effects {
     /// Transmission that changes colour (glass with a non-grey `Tf`).
     pub coloured_filtering: bool,
     pub textures: bool,
+    /// Some triangle has vertex normals (shading normals).
+    pub shading_normals: bool,
+    /// Some material is other than a plain Lambertian one (glossy, plastic, conductor,
+    /// glass, ...), whatever its reflectances.
+    pub non_lambertian: bool,
     pub area_lights: bool,
     pub spot_lights: bool,
     pub point_lights: bool,
@@ -33,7 +38,9 @@ impl Effects {
             used[s.material as usize] = true;
         }
         let mut e = Effects::default();
+        e.shading_normals = shading.iter().any(|s| s.normals.is_some());
         for (m, _) in materials.iter().zip(&used).filter(|(_, u)| **u) {
+            e.non_lambertian |= m.kind != MaterialKind::Diffuse;
             match m.kind {
                 MaterialKind::Diffuse => e.diffuse |= m.kd.max_element() > 0.0,
                 MaterialKind::Glossy => {
@@ -79,7 +86,7 @@ impl Effects {
     }
 
     /// `(name, present)` for every effect, in a fixed order.
-    pub fn list(&self) -> [(&'static str, bool); 10] {
+    pub fn list(&self) -> [(&'static str, bool); 12] {
         [
             ("diffuse", self.diffuse),
             ("glossy", self.glossy),
@@ -87,22 +94,34 @@ impl Effects {
             ("refraction", self.refraction),
             ("coloured filtering", self.coloured_filtering),
             ("textures", self.textures),
+            ("shading normals", self.shading_normals),
             ("area lights", self.area_lights),
             ("spot lights", self.spot_lights),
             ("point lights", self.point_lights),
+            ("environment", self.environment),
             ("caustic paths", self.caustics_possible),
         ]
     }
 
     /// What the renderer skips because of absent effects (one line each): only code paths
-    /// that are actually guarded by the analysis are listed.
+    /// and passes that are actually guarded by the analysis are listed (the rules:
+    /// `integrators/src/skips.rs`; the compiled loops: [`crate::scene::features`]).
     pub fn skipped(&self) -> Vec<&'static str> {
         let mut s = Vec::new();
         if !self.area_lights {
             s.push("emission lookups and MIS weights at surface hits (no area lights)");
         }
+        if !self.environment {
+            s.push("environment lookups for escaping rays (no environment)");
+        }
         if !self.textures {
             s.push("texture lookups (no textures)");
+        }
+        if !self.shading_normals {
+            s.push("shading-normal interpolation (no vertex normals)");
+        }
+        if !self.diffuse && !self.glossy {
+            s.push("particle passes and maps (no surface stores particles)");
         }
         s
     }

@@ -6,6 +6,7 @@
 pub mod bvh;
 pub mod camera;
 pub mod effects;
+pub mod features;
 pub mod geometry;
 pub mod light;
 pub mod load;
@@ -14,12 +15,13 @@ pub mod obj;
 pub mod texture;
 pub mod toml_file;
 
-use crate::bsdf::material::Material;
-use crate::bsdf::{Bsdf, Lobes};
+use crate::bsdf::material::{Material, MaterialKind};
+use crate::bsdf::{Bsdf, Lobes, SurfaceLobes};
 use crate::sampling::Distribution1D;
 use crate::scene::bvh::Bvh;
 use crate::scene::camera::Camera;
 use crate::scene::effects::Effects;
+use crate::scene::features::{Features, General};
 use crate::scene::geometry::{
     SurfaceHit, TriangleGeom, TriangleShading, offset_ray_origin, spawn_origin,
 };
@@ -161,18 +163,38 @@ impl Scene {
     /// Closest surface hit along a ray.
     #[inline]
     pub fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<SurfaceHit> {
+        self.intersect_with::<General>(origin, dir, t_max)
+    }
+
+    /// [`Scene::intersect`] compiled for the effects `F` (see [`features`]).
+    #[inline]
+    pub fn intersect_with<F: Features>(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        t_max: f32,
+    ) -> Option<SurfaceHit> {
         let h = self.bvh.intersect(origin, dir, t_max)?;
-        Some(self.surface_hit(h.triangle, h.t, h.b1, h.b2))
+        Some(self.surface_hit_with::<F>(h.triangle, h.t, h.b1, h.b2))
     }
 
     /// The full surface description of a hit on triangle `tri` at barycentrics `(b1, b2)`.
     #[inline]
     pub fn surface_hit(&self, tri: u32, t: f32, b1: f32, b2: f32) -> SurfaceHit {
+        self.surface_hit_with::<General>(tri, t, b1, b2)
+    }
+
+    /// [`Scene::surface_hit`] compiled for the effects `F`: without shading normals the
+    /// shading normal is the geometric one, without textures the texture coordinates are not
+    /// interpolated (nothing reads them).
+    #[inline]
+    pub fn surface_hit_with<F: Features>(&self, tri: u32, t: f32, b1: f32, b2: f32) -> SurfaceHit {
         let g = &self.triangles[tri as usize];
         let s = &self.shading[tri as usize];
         let ng = g.cross().normalize();
         let b0 = 1.0 - b1 - b2;
-        let ns = match s.normals {
+        let normals = if F::SHADING_NORMALS { s.normals } else { None };
+        let ns = match normals {
             Some(n) => {
                 let n = (b0 * n[0] + b1 * n[1] + b2 * n[2]).normalize_or_zero();
                 if n == Vec3::ZERO || !n.is_finite() {
@@ -186,8 +208,8 @@ impl Scene {
             None => ng,
         };
         let uv = match s.uvs {
-            Some(uv) => b0 * uv[0] + b1 * uv[1] + b2 * uv[2],
-            None => Vec2::new(b1, b2),
+            Some(uv) if F::TEXTURES => b0 * uv[0] + b1 * uv[1] + b2 * uv[2],
+            _ => Vec2::new(b1, b2),
         };
         SurfaceHit {
             t,
@@ -204,12 +226,31 @@ impl Scene {
     /// The BSDF at a hit (textures looked up only when the material has one).
     #[inline]
     pub fn bsdf(&self, hit: &SurfaceHit) -> Bsdf {
+        self.bsdf_with::<General>(hit)
+    }
+
+    /// [`Scene::bsdf`] compiled for the effects `F`: no texture lookups without textures,
+    /// and a Lambertian material's lobes made directly when every surface is Lambertian.
+    #[inline]
+    pub fn bsdf_with<F: Features>(&self, hit: &SurfaceHit) -> Bsdf {
         let m = &self.materials[hit.material as usize];
-        let kd = match m.kd_texture {
+        if F::LAMBERTIAN && !F::TEXTURES && m.kind == MaterialKind::Diffuse {
+            let lobes = SurfaceLobes {
+                lobes: Lobes::Diffuse { kd: m.kd },
+                two_sided: m.two_sided,
+            };
+            return Bsdf::new(lobes, hit.ns, hit.ng);
+        }
+        let (kd_texture, ks_texture) = if F::TEXTURES {
+            (m.kd_texture, m.ks_texture)
+        } else {
+            (None, None)
+        };
+        let kd = match kd_texture {
             Some(t) => m.kd * self.textures[t as usize].lookup(hit.uv),
             None => m.kd,
         };
-        let ks = match m.ks_texture {
+        let ks = match ks_texture {
             Some(t) => m.ks * self.textures[t as usize].lookup(hit.uv),
             None => m.ks,
         };

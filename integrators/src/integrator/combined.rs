@@ -41,7 +41,7 @@ impl Integrator for Combined {
     ) {
         let cam = &ctx.scene.camera;
         let densities = ctx.densities();
-        let c = path_tracing::trace(
+        let c = crate::specialised!(ctx.specialisation, F => path_tracing::trace::<F, _>(
             ctx.scene,
             cam.position,
             cam.ray_dir(raster),
@@ -50,7 +50,7 @@ impl Integrator for Combined {
             state,
             rng,
             CameraMis::new(cam.position, &densities),
-        );
+        ));
         out[0] += c.share;
         out[1] += c.pt;
     }
@@ -65,8 +65,13 @@ impl Integrator for Combined {
             return;
         };
         let densities = ctx.densities();
-        light_tracing::trace(ctx, rng, state, lt, Some(combined), |li, p, n| {
-            LightMis::new(ctx.scene, &densities, li, p, n)
-        });
+        crate::specialised!(ctx.specialisation, F => light_tracing::trace::<F, _>(
+            ctx,
+            rng,
+            state,
+            lt,
+            Some(combined),
+            |li, p, n| LightMis::new(ctx.scene, &densities, li, p, n),
+        ));
     }
 }

@@ -33,8 +33,10 @@ use footprint::film::SplatList;
 use footprint::guide::sampler::{DirectionSample, SamplerState};
 use footprint::rng::Rng;
 use footprint::scene::Scene;
+use footprint::scene::features::Features;
 use footprint::scene::light::Light;
 use glam::Vec3;
+use std::marker::PhantomData;
 
 /// Light tracing, registered as `lt`.
 pub struct LightTracing;
@@ -62,7 +64,14 @@ impl Integrator for LightTracing {
         state: &mut SamplerState<'a>,
         splats: &mut [SplatList],
     ) {
-        trace(ctx, rng, state, &mut splats[0], None, |_, _, _| ());
+        crate::specialised!(ctx.specialisation, F => trace::<F, _>(
+            ctx,
+            rng,
+            state,
+            &mut splats[0],
+            None,
+            |_, _, _| (),
+        ));
     }
 }
 
@@ -102,9 +111,10 @@ impl LightShare for LightMis<'_> {
     }
 }
 
-/// Traces one light path and splats its camera connections into `lt`, and into `share`
-/// weighted by the running weights `weights(light, point, normal)` makes at the light point.
-pub fn trace<'a, W: LightShare>(
+/// Traces one light path, in the loop compiled for the effects `F`, and splats its camera
+/// connections into `lt`, and into `share` weighted by the running weights `weights(light,
+/// point, normal)` makes at the light point.
+pub fn trace<'a, F: Features, W: LightShare>(
     ctx: &Context<'a>,
     rng: &mut Rng,
     state: &mut SamplerState<'a>,
@@ -160,33 +170,37 @@ pub fn trace<'a, W: LightShare>(
         max_vertex_depth: ctx.max_depth - 1,
         rr_depth: ctx.rr_depth,
     };
-    let mut v = LightVisitor {
+    let mut v = LightVisitor::<W, F> {
         scene,
         light,
         lt,
         share,
         weights,
+        features: PhantomData,
     };
     walk(scene, &start, &ctx.light_sampler, state, rng, &mut v);
 }
 
-struct LightVisitor<'s, 'f, W> {
+struct LightVisitor<'s, 'f, W, F> {
     scene: &'s Scene,
     light: &'s Light,
     lt: &'f mut SplatList,
     /// The second estimate's splats and weights.
     share: Option<&'f mut SplatList>,
     weights: W,
+    features: PhantomData<F>,
 }
 
-impl<W: LightShare> Visitor for LightVisitor<'_, '_, W> {
+impl<W: LightShare, F: Features> Visitor for LightVisitor<'_, '_, W, F> {
+    type F = F;
+
     // ---- Connect to the camera ----
     fn reached(&mut self, v: &Vertex, _from: &Arrival) {
         let scene = self.scene;
         if self.share.is_some() {
             self.weights.arrive(self.light, v);
         }
-        if v.bsdf.is_delta() {
+        if v.bsdf.is_delta_with::<F>() {
             return;
         }
         let cam = &scene.camera;
@@ -194,7 +208,7 @@ impl<W: LightShare> Visitor for LightVisitor<'_, '_, W> {
             return;
         };
         let wi = conn.dir_to_camera;
-        let f = v.bsdf.eval(v.wo, wi, TransportMode::Importance);
+        let f = v.bsdf.eval_with::<F>(v.wo, wi, TransportMode::Importance);
         if f.max_element() <= 0.0 || !scene.visible_from_camera(v.hit.p, v.hit.ng) {
             return;
         }

@@ -23,6 +23,7 @@ use footprint::film::SplatList;
 use footprint::guide::sampler::{GuidedSampler, SamplerState};
 use footprint::rng::Rng;
 use footprint::scene::Scene;
+use footprint::scene::features::Specialisation;
 use glam::Vec2;
 
 /// Everything a path needs: the scene, the depth limit and the two direction samplers
@@ -38,6 +39,8 @@ pub struct Context<'a> {
     /// The combined image's MIS weights use the guided samplers' densities (else the
     /// unguided ones).
     pub guided_mis: bool,
+    /// The compiled path loop the paths run in (`crate::specialised!`).
+    pub specialisation: Specialisation,
 }
 
 impl<'a> Context<'a> {

@@ -24,8 +24,10 @@ use footprint::guide::sampler::{DirectionSample, GuidedSampler, SamplerState, Sc
 use footprint::math::power_heuristic;
 use footprint::rng::Rng;
 use footprint::scene::Scene;
+use footprint::scene::features::{Features, General};
 use footprint::scene::light::LightSample;
 use glam::{Vec2, Vec3};
+use std::marker::PhantomData;
 
 /// Path tracing, registered as `pt`.
 pub struct PathTracing;
@@ -55,7 +57,7 @@ impl Integrator for PathTracing {
         out: &mut [Rgb],
     ) {
         let cam = &ctx.scene.camera;
-        let c = trace(
+        let c = crate::specialised!(ctx.specialisation, F => trace::<F, _>(
             ctx.scene,
             cam.position,
             cam.ray_dir(raster),
@@ -64,7 +66,7 @@ impl Integrator for PathTracing {
             state,
             rng,
             (),
-        );
+        ));
         out[0] += c.pt;
     }
 }
@@ -127,13 +129,14 @@ pub fn radiance_along(
     let sampler = GuidedSampler::bsdf();
     let mut state = SamplerState::default();
     let depths = (max_depth, crate::walk::RR_START_DEPTH);
-    trace(scene, origin, dir, depths, &sampler, &mut state, rng, ()).pt
+    trace::<General, _>(scene, origin, dir, depths, &sampler, &mut state, rng, ()).pt
 }
 
-/// Traces one camera path from `origin` along `dir` with `(max_depth, rr_depth)`; `share`
-/// receives the second estimate's weights (its `origin` must be the camera position).
+/// Traces one camera path from `origin` along `dir` with `(max_depth, rr_depth)`, in the
+/// loop compiled for the effects `F`; `share` receives the second estimate's weights (its
+/// `origin` must be the camera position).
 #[allow(clippy::too_many_arguments)]
-pub fn trace<'a, S: CameraShare>(
+pub fn trace<'a, F: Features, S: CameraShare>(
     scene: &Scene,
     origin: Vec3,
     dir: Vec3,
@@ -143,10 +146,11 @@ pub fn trace<'a, S: CameraShare>(
     rng: &mut Rng,
     share: S,
 ) -> CameraContribution {
-    let mut v = CameraVisitor {
+    let mut v = CameraVisitor::<S, F> {
         scene,
         out: CameraContribution::default(),
         share,
+        features: PhantomData,
     };
     let start = Start {
         origin,
@@ -161,15 +165,21 @@ pub fn trace<'a, S: CameraShare>(
     v.out
 }
 
-struct CameraVisitor<'s, S> {
+struct CameraVisitor<'s, S, F> {
     scene: &'s Scene,
     out: CameraContribution,
     share: S,
+    features: PhantomData<F>,
 }
 
-impl<S: CameraShare> Visitor for CameraVisitor<'_, S> {
+impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
+    type F = F;
+
     // ---- The environment seen by an escaping ray ----
     fn escaped(&mut self, dir: Vec3, beta: Rgb, _depth: u32, from: &Arrival) {
+        if !F::ENVIRONMENT {
+            return;
+        }
         let Some((ei, env)) = self.scene.environment() else {
             return;
         };
@@ -193,7 +203,7 @@ impl<S: CameraShare> Visitor for CameraVisitor<'_, S> {
         if S::ACTIVE {
             self.share.arrive(self.scene, v);
         }
-        if !self.scene.effects.area_lights {
+        if !F::AREA_LIGHTS || !self.scene.effects.area_lights {
             return;
         }
         let Some(li) = v.hit.light else { return };
@@ -224,7 +234,7 @@ impl<S: CameraShare> Visitor for CameraVisitor<'_, S> {
     ) {
         let u_light = rng.uniform();
         let u_pos = rng.uniform2();
-        if v.bsdf.is_delta() {
+        if v.bsdf.is_delta_with::<F>() {
             return;
         }
         let scene = self.scene;
@@ -233,26 +243,28 @@ impl<S: CameraShare> Visitor for CameraVisitor<'_, S> {
         let Some(ls) = light.sample_li(v.hit.p, u_pos) else {
             return;
         };
-        let f = v.bsdf.eval(v.wo, ls.wi, TransportMode::Radiance);
+        let f = v.bsdf.eval_with::<F>(v.wo, ls.wi, TransportMode::Radiance);
+        // Point and spot lights are the only delta lights.
+        let delta = F::DELTA_LIGHTS && ls.delta;
         if f.max_element() <= 0.0 || !scene.visible(v.hit.p, v.hit.ng, ls.p, ls.n) {
             return;
         }
         let cos = ls.wi.dot(v.hit.ns).abs();
-        let contrib = if ls.delta {
+        let contrib = if delta {
             v.beta * f * ls.li * (cos / pmf)
         } else {
             v.beta * f * ls.li * (cos / (ls.pdf_w * pmf))
         };
         // The path tracer's own weight: NEE against hitting the light by the sampler.
-        let w_pt = if ls.delta {
+        let w_pt = if delta {
             1.0
         } else {
-            power_heuristic(ls.pdf_w * pmf, sampler.pdf(at, state, ls.wi))
+            power_heuristic(ls.pdf_w * pmf, sampler.pdf_with::<F>(at, state, ls.wi))
         };
         self.out.pt += contrib * w_pt;
         if S::ACTIVE {
             // Environment paths come from the path tracer alone (see `light_tracing`).
-            let w = if light.is_environment() {
+            let w = if F::ENVIRONMENT && light.is_environment() {
                 w_pt
             } else {
                 self.share.nee(scene, li as u32, v, &ls)

@@ -1,0 +1,456 @@
+//! `auto`: the renderer chooses the method. A short **pilot** renders a few independent
+//! passes of the combined image, which carries the path tracer's, the light tracer's and the
+//! combined estimate of the same paths as three layers, and measures per pixel what each
+//! direction contributes: its mean and its variance per pass. With the time one pass of each
+//! method costs, that predicts each candidate's relative MSE (`compare`'s metric) at the time
+//! left, and the rest of the budget goes to the candidate predicted best.
+//!
+//! * **Prediction.** For candidate `m` with per-pass variance `σ²_m` per pixel and channel, a
+//!   pass time `t_m` and the time left `T`: `E_m = mean[(σ²_m t_m / T + b²_m) / (R² + 0.01)]`,
+//!   `R` the pilot's combined mean, everything divided by `R`'s mean luminance as `compare`
+//!   does.
+//! * **Missing light.** A method that cannot make some paths is biased there: path tracing
+//!   misses caustics of point and spot lights (`L S+ D ... E`: a delta light behind a specular
+//!   surface), light tracing misses what the pinhole sees through a specular surface and the
+//!   environment seen directly. Where the scene's effects allow that, the candidate's squared
+//!   difference to the combined mean (less what its noise explains) is added as `b²_m`: a
+//!   point-light caustic seen only by the light tracer rules path tracing out.
+//! * **Guided candidates** (`--guide auto`) are piloted only when their maps are predicted to
+//!   take at most [`GUIDED_MAPS_SHARE`] of the budget (the passes' paths at the pilot's time
+//!   per path); their maps are then built once, piloted with the same passes, and reused by
+//!   the render if one of them wins.
+//! * **Budget.** With `--time T` the pilot takes about [`PILOT_SHARE`] of `T` (at least
+//!   [`MIN_BATCHES`] passes) and counts in the budget: the render stops at `T`, pilot
+//!   included. With `--spp N` the pilot's [`MIN_BATCHES`] passes are extra, the candidates
+//!   are compared at the time `N` passes of path tracing take, and the chosen method renders
+//!   `N` passes.
+
+use crate::maps::Guidance;
+use crate::method::Method;
+use crate::render::{RenderOptions, RenderResult, StopRule, guidance, render_prepared};
+use footprint::Rgb;
+use footprint::film::Image;
+use footprint::math::luminance;
+use footprint::scene::Scene;
+use std::time::{Duration, Instant};
+
+/// Share of a time budget the unguided pilot takes.
+pub const PILOT_SHARE: f64 = 0.04;
+/// Guided candidates are piloted only when their maps are predicted to take at most this
+/// share of the budget.
+pub const GUIDED_MAPS_SHARE: f64 = 0.15;
+/// Fewest and most pilot passes per set of candidates.
+pub const MIN_BATCHES: usize = 4;
+pub const MAX_BATCHES: usize = 48;
+
+/// What `auto` chooses among.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AutoSpec {
+    pub candidates: Vec<Method>,
+    /// `auto`, `auto-bsdf` (integrator chosen), `pt-auto` (guide chosen).
+    pub label: String,
+}
+
+impl AutoSpec {
+    /// `integrator` and `guide` fixed when given, chosen when `None`; the integrators are
+    /// path tracing, light tracing and the combined image.
+    pub fn new(integrator: Option<Method>, guide: Option<Method>) -> Self {
+        let integrators: Vec<&'static dyn crate::integrator::Integrator> = match integrator {
+            Some(m) => vec![m.integrator],
+            None => ["pt", "lt", "combined"]
+                .iter()
+                .filter_map(|n| crate::integrator::find_integrator(n))
+                .collect(),
+        };
+        let guides: Vec<&'static dyn footprint::guide::Guide> = match guide {
+            Some(m) => vec![m.guide],
+            None => footprint::guide::GUIDES.to_vec(),
+        };
+        let mut candidates = Vec::new();
+        for g in &guides {
+            for i in &integrators {
+                candidates.push(Method {
+                    integrator: *i,
+                    guide: *g,
+                });
+            }
+        }
+        let label = format!(
+            "{}-{}",
+            integrator.map(|m| m.integrator.name()).unwrap_or("auto"),
+            guide.map(|m| m.guide.name()).unwrap_or("auto")
+        );
+        AutoSpec {
+            candidates,
+            label: if label == "auto-auto" {
+                "auto".into()
+            } else {
+                label
+            },
+        }
+    }
+
+    /// Every registered method.
+    pub fn all() -> Self {
+        Self::new(None, None)
+    }
+}
+
+/// One candidate as the pilot measured it.
+#[derive(Clone, Debug)]
+pub struct Candidate {
+    pub method: String,
+    /// Predicted relative MSE at the time left (infinite when not piloted).
+    pub predicted: f64,
+    /// Seconds per pass.
+    pub pass_seconds: f64,
+    /// Part of `predicted` from light the method cannot find.
+    pub missing: f64,
+}
+
+/// What `auto` chose and why.
+pub struct Choice {
+    pub method: Method,
+    /// One line: the choice, its predicted error against the others', and why.
+    pub reason: String,
+    pub candidates: Vec<Candidate>,
+    /// Time the pilot took (maps of guided candidates included).
+    pub pilot: Duration,
+    /// Maps built by the pilot for the chosen method (guided winners reuse them).
+    pub guidance: Option<Guidance>,
+}
+
+/// Per-pixel, per-channel running sums of a layer over pilot passes.
+#[derive(Clone)]
+struct Moments {
+    sum: Vec<[f64; 3]>,
+    sum2: Vec<[f64; 3]>,
+    n: usize,
+}
+
+impl Moments {
+    fn new(npix: usize) -> Self {
+        Moments {
+            sum: vec![[0.0; 3]; npix],
+            sum2: vec![[0.0; 3]; npix],
+            n: 0,
+        }
+    }
+
+    fn add(&mut self, img: &Image) {
+        for ((s, s2), p) in self.sum.iter_mut().zip(&mut self.sum2).zip(&img.pixels) {
+            for c in 0..3 {
+                let x = p[c] as f64;
+                s[c] += x;
+                s2[c] += x * x;
+            }
+        }
+        self.n += 1;
+    }
+
+    fn mean(&self, i: usize, c: usize) -> f64 {
+        self.sum[i][c] / self.n as f64
+    }
+
+    /// Per-pass variance (unbiased).
+    fn var(&self, i: usize, c: usize) -> f64 {
+        let n = self.n as f64;
+        let m = self.sum[i][c] / n;
+        ((self.sum2[i][c] - n * m * m) / (n - 1.0)).max(0.0)
+    }
+}
+
+/// Whether `integrator` can miss light in `scene` (see the module doc).
+fn can_miss_light(scene: &Scene, integrator: &str) -> Option<&'static str> {
+    let e = &scene.effects;
+    let specular = e.specular_reflection || e.refraction;
+    match integrator {
+        "pt" if specular && (e.spot_lights || e.point_lights) => {
+            Some("path tracing cannot find caustics of point and spot lights")
+        }
+        "lt" if specular => Some("light tracing cannot see through specular surfaces"),
+        "lt" if e.environment => Some("light tracing does not see the environment directly"),
+        _ => None,
+    }
+}
+
+/// The pilot's passes of the combined image of `guide` (`bsdf` or a guide with maps):
+/// moments of the combined, pt and lt layers, and the mean camera-path and light-path time
+/// per pass.
+struct Pilot {
+    layers: [Moments; 3],
+    camera_s: f64,
+    light_s: f64,
+}
+
+fn pilot_passes(
+    scene: &Scene,
+    opts: &RenderOptions,
+    method: Method,
+    g: &Guidance,
+    until: Option<Instant>,
+    min_batches: usize,
+) -> Pilot {
+    let npix = scene.camera.pixel_count();
+    let mut p = Pilot {
+        layers: [Moments::new(npix), Moments::new(npix), Moments::new(npix)],
+        camera_s: 0.0,
+        light_s: 0.0,
+    };
+    for b in 0..MAX_BATCHES {
+        if b >= min_batches && until.is_none_or(|u| Instant::now() >= u) {
+            break;
+        }
+        let o = RenderOptions {
+            method,
+            spp: 1,
+            time: None,
+            seed: opts.seed ^ 0xa070_0000_0000_0000 ^ (b as u64 + 1),
+            passes: crate::PassSelection::ALL,
+            auto: None,
+            ..opts.clone()
+        };
+        let r = render_prepared(scene, &o, g, Duration::ZERO, StopRule::HalfPass, |_| {});
+        for (m, (_, img)) in p.layers.iter_mut().zip(&r.layers) {
+            m.add(img);
+        }
+        p.camera_s += r.timings.camera_paths.as_secs_f64();
+        p.light_s += r.timings.light_paths.as_secs_f64();
+    }
+    let n = p.layers[0].n as f64;
+    p.camera_s /= n;
+    p.light_s /= n;
+    p
+}
+
+/// The time of one pass of `method` (its own path loop, no MIS bookkeeping): the fastest of
+/// three, since other jobs on the machine only ever slow a pass down.
+fn pass_seconds(scene: &Scene, opts: &RenderOptions, method: Method, g: &Guidance) -> f64 {
+    let o = RenderOptions {
+        method,
+        spp: 1,
+        time: None,
+        passes: crate::PassSelection::ALL,
+        auto: None,
+        ..opts.clone()
+    };
+    (0..3)
+        .map(|_| {
+            let r: RenderResult =
+                render_prepared(scene, &o, g, Duration::ZERO, StopRule::HalfPass, |_| {});
+            r.timings.tracing.as_secs_f64()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The candidates' predictions from one pilot: `(layer index, integrator name)` per
+/// candidate of `guide`.
+fn predict(
+    scene: &Scene,
+    pilot: &Pilot,
+    reference: &Moments,
+    seconds: [f64; 3],
+    time_left: f64,
+    guide: &str,
+) -> Vec<Candidate> {
+    let npix = reference.sum.len();
+    let scale = {
+        let mut m = Rgb::ZERO;
+        for i in 0..npix {
+            m += Rgb::new(
+                reference.mean(i, 0) as f32,
+                reference.mean(i, 1) as f32,
+                reference.mean(i, 2) as f32,
+            );
+        }
+        (luminance(m / npix as f32) as f64).max(1e-20)
+    };
+    let k = pilot.layers[0].n as f64;
+    ["combined", "pt", "lt"]
+        .iter()
+        .enumerate()
+        .map(|(l, name)| {
+            let layer = &pilot.layers[l];
+            let biased = can_miss_light(scene, name).is_some();
+            let (mut var, mut bias) = (0.0f64, 0.0f64);
+            for i in 0..npix {
+                for c in 0..3 {
+                    let r = reference.mean(i, c) / scale;
+                    let d = r * r + 0.01;
+                    let v = layer.var(i, c) / (scale * scale);
+                    var += v / d;
+                    if biased {
+                        let diff = layer.mean(i, c) / scale - r;
+                        let noise = (v + reference.var(i, c) / (scale * scale)) / k;
+                        bias += (diff * diff - noise).max(0.0) / d;
+                    }
+                }
+            }
+            let n = (3 * npix) as f64;
+            let (var, bias) = (var / n, bias / n);
+            let passes = (time_left / seconds[l]).max(1.0);
+            Candidate {
+                method: format!("{name}-{guide}"),
+                predicted: var / passes + bias,
+                pass_seconds: seconds[l],
+                missing: bias,
+            }
+        })
+        .collect()
+}
+
+/// Runs the pilot for `opts` (whose `auto` names the candidates; its `time` is the budget)
+/// and chooses.
+pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
+    let start = Instant::now();
+    let find = |i: &str, g: &str| Method::from_names(i, g).expect("registered");
+    let wanted = |name: &str| spec.candidates.iter().any(|m| m.name() == name);
+    if spec.candidates.len() == 1 {
+        return Choice {
+            method: spec.candidates[0],
+            reason: "the only candidate".into(),
+            candidates: Vec::new(),
+            pilot: Duration::ZERO,
+            guidance: None,
+        };
+    }
+    let budget = opts.time;
+    let unguided = Guidance::default();
+    // ---- Unguided pilot: the combined image's three layers, and pt's and lt's own pass times ----
+    let until = budget.map(|t| start + Duration::from_secs_f64(PILOT_SHARE * t));
+    let pilot = pilot_passes(
+        scene,
+        opts,
+        find("combined", "bsdf"),
+        &unguided,
+        until,
+        MIN_BATCHES,
+    );
+    let t_pt = pass_seconds(scene, opts, find("pt", "bsdf"), &unguided);
+    let t_lt = pass_seconds(scene, opts, find("lt", "bsdf"), &unguided);
+    // The combined pass's camera (light) half costs more than pt's (lt's) pass by the MIS
+    // bookkeeping: the same ratio is assumed for the guided passes.
+    let cam_ratio = (t_pt / pilot.camera_s.max(1e-9)).min(1.0);
+    let light_ratio = (t_lt / pilot.light_s.max(1e-9)).min(1.0);
+    let reference = pilot.layers[0].clone();
+    if reference.sum.iter().all(|p| p.iter().all(|x| *x <= 0.0)) {
+        return Choice {
+            method: spec.candidates[0],
+            reason: "the pilot found no light: the first candidate".into(),
+            candidates: Vec::new(),
+            pilot: start.elapsed(),
+            guidance: None,
+        };
+    }
+    // The time the candidates are compared at.
+    let horizon = |spent: f64| match budget {
+        Some(t) => (t - spent).max(1e-3),
+        None => opts.spp as f64 * t_pt,
+    };
+    let mut all = predict(
+        scene,
+        &pilot,
+        &reference,
+        [pilot.camera_s + pilot.light_s, t_pt, t_lt],
+        horizon(start.elapsed().as_secs_f64()),
+        "bsdf",
+    );
+    let mut notes = Vec::new();
+    // ---- Guided pilots, when their maps fit ----
+    let mut built: Vec<(String, Guidance)> = Vec::new();
+    let guided_start = Instant::now();
+    // What one guide's maps and pilot took (the estimate for the next guide).
+    let mut last_guided: Option<f64> = None;
+    for g in footprint::guide::GUIDES
+        .iter()
+        .filter(|g| g.uses_particles())
+    {
+        let gname = g.name();
+        if !["pt", "lt", "combined"]
+            .iter()
+            .any(|i| wanted(&format!("{i}-{gname}")))
+        {
+            continue;
+        }
+        // A particle path costs about a pass's path; the map and cache builds about as much
+        // again, and the guided pilot passes as much as both (measured on cornell, door and
+        // desk: 3-5x the passes' paths alone).
+        let npix = scene.camera.pixel_count() as f64;
+        let maps_est = last_guided.unwrap_or(
+            4.0 * (scene.maps.photons as f64 * t_lt / npix
+                + scene.maps.importons as f64 * t_pt / npix),
+        );
+        let spent = guided_start.elapsed().as_secs_f64();
+        let allowed = GUIDED_MAPS_SHARE * horizon(0.0);
+        if spent + maps_est > allowed {
+            notes.push(format!(
+                "{gname} not piloted: its maps and pilot would take about {maps_est:.2} s, more than {:.0}% of {:.2} s",
+                100.0 * GUIDED_MAPS_SHARE,
+                horizon(0.0)
+            ));
+            continue;
+        }
+        let g0 = Instant::now();
+        let both = find("combined", gname);
+        let o = RenderOptions {
+            method: both,
+            auto: None,
+            ..opts.clone()
+        };
+        let gd = guidance(scene, &o, &|| None);
+        let until = budget.map(|t| Instant::now() + Duration::from_secs_f64(PILOT_SHARE * t));
+        let p = pilot_passes(scene, opts, both, &gd, until, 2);
+        last_guided = Some(g0.elapsed().as_secs_f64());
+        let secs = [
+            p.camera_s + p.light_s,
+            p.camera_s * cam_ratio,
+            p.light_s * light_ratio,
+        ];
+        all.extend(predict(
+            scene,
+            &p,
+            &reference,
+            secs,
+            horizon(start.elapsed().as_secs_f64()),
+            gname,
+        ));
+        built.push((gname.to_string(), gd));
+    }
+    all.retain(|c| wanted(&c.method));
+    all.sort_by(|a, b| a.predicted.total_cmp(&b.predicted));
+    let best = all[0].clone();
+    let method = Method::parse(&best.method).expect("a candidate");
+    let others: Vec<String> = all[1..]
+        .iter()
+        .map(|c| format!("{} {:.3e}", c.method, c.predicted))
+        .collect();
+    let mut reason = format!(
+        "{} predicted relative MSE {:.3e} at {:.1} s ({}); pilot {} passes",
+        best.method,
+        best.predicted,
+        horizon(start.elapsed().as_secs_f64()),
+        others.join(", "),
+        pilot.layers[0].n
+    );
+    for c in &all {
+        if c.missing > 0.1 * c.predicted && c.missing > 0.0 {
+            if let Some(why) = can_miss_light(scene, c.method.split('-').next().unwrap_or("")) {
+                reason += &format!("; {} misses light ({why})", c.method);
+            }
+        }
+    }
+    for n in notes {
+        reason += &format!("; {n}");
+    }
+    let guidance = built
+        .into_iter()
+        .find(|(g, _)| *g == method.guide.name())
+        .map(|(_, g)| g);
+    Choice {
+        method,
+        reason,
+        candidates: all,
+        pilot: start.elapsed(),
+        guidance,
+    }
+}

@@ -1,0 +1,114 @@
+//! `auto`: the pilot chooses light tracing where light tracing is the only way (a caustic
+//! of a point light cast through glass) and path tracing where the camera sees mostly the
+//! light's direct glow; `compare` and `render` accept it.
+
+mod common;
+
+use footprint::scene::Scene;
+use footprint::scene::load::load_scene;
+use footprint_integrators::auto::{AutoSpec, choose};
+use footprint_integrators::{Method, RenderOptions, render};
+use std::path::PathBuf;
+
+/// A folder of its own for a test's scene files.
+fn dir(name: &str) -> PathBuf {
+    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// A point light inside a glass cube above a white floor: every path from the light to
+/// what the camera sees passes through glass, so only light tracing finds the light.
+fn caustic_scene() -> Scene {
+    let d = dir("auto-caustic");
+    let mut obj = String::from("mtllib scene.mtl\no floor\nusemtl white\n");
+    obj += "v -3 0 -3\nv 3 0 -3\nv 3 0 3\nv -3 0 3\nf 1 4 3\nf 1 3 2\n";
+    obj += "o glass\n";
+    obj += &common::box_obj([-0.4, 0.8, -0.4], [0.4, 1.6, 0.4], 5, "glass");
+    std::fs::write(d.join("scene.obj"), obj).unwrap();
+    std::fs::write(
+        d.join("scene.mtl"),
+        "newmtl white\nKd 0.8 0.8 0.8\nKs 0 0 0\nillum 1\nnewmtl glass\nKd 0 0 0\nNi 1.5\nTf 1 1 1\nillum 7\n",
+    )
+    .unwrap();
+    std::fs::write(
+        d.join("scene.toml"),
+        "[camera]\nposition = [0.0, 2.5, -3.5]\nlook_at = [0.0, 0.0, 0.5]\nfov_y = 45.0\nresolution = [40, 40]\n\n[[mesh]]\nfile = \"scene.obj\"\n\n[[light]]\ntype = \"point\"\nposition = [0.0, 1.2, 0.0]\nintensity = [20.0, 20.0, 20.0]\n",
+    )
+    .unwrap();
+    load_scene(&d.join("scene.toml")).unwrap()
+}
+
+/// cornell seen from below its ceiling light, which fills most of the picture.
+fn glow_scene() -> Scene {
+    let d = dir("auto-glow");
+    let cornell = common::scenes_dir().join("cornell/cornell.obj");
+    std::fs::write(
+        d.join("scene.toml"),
+        format!(
+            "[camera]\nposition = [2.78, 4.6, 2.795]\nlook_at = [2.78, 5.5, 2.795]\nup = [0.0, 0.0, 1.0]\nfov_y = 70.0\nresolution = [40, 40]\n\n[[mesh]]\nfile = \"{}\"\n",
+            cornell.display()
+        ),
+    )
+    .unwrap();
+    load_scene(&d.join("scene.toml")).unwrap()
+}
+
+fn opts() -> RenderOptions {
+    RenderOptions {
+        spp: 32,
+        seed: 3,
+        max_depth: 8,
+        ..Default::default()
+    }
+}
+
+#[test]
+fn auto_picks_light_tracing_for_a_point_light_caustic_through_glass() {
+    let scene = caustic_scene();
+    let spec = AutoSpec::new(None, Some(Method::default()));
+    assert_eq!(spec.label, "auto-bsdf");
+    let c = choose(&scene, &opts(), &spec);
+    eprintln!("{}: {}", c.method.name(), c.reason);
+    assert_eq!(c.method.name(), "lt-bsdf", "{}", c.reason);
+    assert!(c.reason.contains("pt-bsdf misses light"), "{}", c.reason);
+}
+
+#[test]
+fn auto_picks_path_tracing_where_the_camera_sees_the_lights_glow() {
+    let scene = glow_scene();
+    let spec = AutoSpec::new(None, Some(Method::default()));
+    let c = choose(&scene, &opts(), &spec);
+    eprintln!("{}: {}", c.method.name(), c.reason);
+    assert_eq!(c.method.name(), "pt-bsdf", "{}", c.reason);
+}
+
+/// `render` with `auto`: the pilot counts in a time budget, the result says what was chosen.
+#[test]
+fn render_with_auto_keeps_the_budget_and_reports_the_choice() {
+    let mut scene = load_scene(&common::scene_path("desk")).unwrap();
+    scene.camera = scene.camera.with_resolution(48, 48).unwrap();
+    let mut o = RenderOptions {
+        time: Some(1.5),
+        ..opts()
+    };
+    o.apply_names(Some("auto"), Some("auto")).unwrap();
+    assert_eq!(o.auto.as_ref().unwrap().label, "auto");
+    let r = render(&scene, &o, |_| {});
+    let why = r.auto.clone().expect("auto reports its choice");
+    eprintln!("desk: {} ({why})", r.method.name());
+    assert!(r.elapsed.as_secs_f64() < 1.5 * 1.6, "took {:?}", r.elapsed);
+    assert!(r.image.all_valid() && r.image.mean().max_element() > 0.0);
+    // A fixed part stays fixed.
+    let mut p = opts();
+    p.apply_names(Some("lt"), Some("auto")).unwrap();
+    let spec = p.auto.unwrap();
+    assert_eq!(spec.label, "lt-auto");
+    assert!(spec.candidates.iter().all(|m| m.integrator.name() == "lt"));
+    assert_eq!(
+        Method::parse_request("pt-auto").unwrap().1.unwrap().label,
+        "pt-auto"
+    );
+    assert!(Method::parse_request("auto").unwrap().1.is_some());
+    assert!(Method::parse_request("pt-bsdf").unwrap().1.is_none());
+}
