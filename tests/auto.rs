@@ -97,7 +97,8 @@ fn render_with_auto_keeps_the_budget_and_reports_the_choice() {
     let r = render(&scene, &o, |_| {});
     let why = r.auto.clone().expect("auto reports its choice");
     eprintln!("desk: {} ({why})", r.method.name());
-    assert!(r.elapsed.as_secs_f64() < 1.5 * 1.6, "took {:?}", r.elapsed);
+    // The pilot counts in the budget (25% slack: a loaded machine slows the last pass).
+    assert!(r.elapsed.as_secs_f64() < 1.5 * 1.25, "took {:?}", r.elapsed);
     assert!(r.image.all_valid() && r.image.mean().max_element() > 0.0);
     // A fixed part stays fixed.
     let mut p = opts();
@@ -111,4 +112,36 @@ fn render_with_auto_keeps_the_budget_and_reports_the_choice() {
     );
     assert!(Method::parse_request("auto").unwrap().1.is_some());
     assert!(Method::parse_request("pt-bsdf").unwrap().1.is_none());
+}
+
+/// Every candidate guided (`--integrator auto --guide footprint`) with a sample budget whose
+/// maps would not fit the guided-maps share: the maps are piloted anyway, and a footprint
+/// method is chosen (this panicked on an empty candidate list).
+#[test]
+fn auto_with_a_fixed_guide_chooses_among_guided_methods() {
+    let mut scene = load_scene(&common::scene_path("cornell")).unwrap();
+    scene.camera = scene.camera.with_resolution(32, 32).unwrap();
+    scene.maps.photons = 20_000;
+    scene.maps.importons = 20_000;
+    let spec = AutoSpec::new(None, Some(Method::parse("pt-footprint").unwrap()));
+    assert_eq!(spec.label, "auto-footprint");
+    let o = RenderOptions { spp: 2, ..opts() };
+    let c = choose(&scene, &o, &spec);
+    eprintln!("{}: {}", c.method.name(), c.reason);
+    assert_eq!(c.method.guide.name(), "footprint", "{}", c.reason);
+    assert!(c.guidance.is_some(), "the piloted maps are handed on");
+}
+
+/// A budget too short for a pilot renders the first unguided candidate without one.
+#[test]
+fn auto_without_room_for_a_pilot_renders_unguided() {
+    let scene = glow_scene();
+    let o = RenderOptions {
+        time: Some(1e-4),
+        ..opts()
+    };
+    let c = choose(&scene, &o, &AutoSpec::all());
+    eprintln!("{}: {}", c.method.name(), c.reason);
+    assert_eq!(c.method.name(), "pt-bsdf");
+    assert!(c.reason.contains("no pilot"), "{}", c.reason);
 }

@@ -263,5 +263,15 @@ fn every_scene_lists_its_skips() {
             Specialisation::for_effects(e) != Specialisation::General,
             "{name}"
         );
+        // Rule 4 on a guided method: the passes are skipped exactly where nothing stores
+        // particles (small maps: only whether they are built matters here).
+        scene.maps.photons = 2000;
+        scene.maps.importons = 2000;
+        let g = run(&scene, "combined-footprint");
+        assert_eq!(
+            has(&g, "particle pass").is_some(),
+            !footprint_integrators::skips::particles_stored(&scene),
+            "{name}"
+        );
     }
 }

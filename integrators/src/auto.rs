@@ -42,6 +42,9 @@ pub const GUIDED_MAPS_SHARE: f64 = 0.15;
 /// Fewest and most pilot passes per set of candidates.
 pub const MIN_BATCHES: usize = 4;
 pub const MAX_BATCHES: usize = 48;
+/// A time budget shorter than this many passes of pt and lt together leaves no room for a
+/// pilot (its least cost is about 7 such pairs): the first unguided candidate renders.
+pub const MIN_BUDGET_PAIRS: f64 = 40.0;
 
 /// What `auto` chooses among.
 #[derive(Clone, Debug, PartialEq)]
@@ -100,12 +103,22 @@ impl AutoSpec {
 #[derive(Clone, Debug)]
 pub struct Candidate {
     pub method: String,
-    /// Predicted relative MSE at the time left (infinite when not piloted).
+    /// Predicted relative MSE at the time left.
     pub predicted: f64,
     /// Seconds per pass.
     pub pass_seconds: f64,
+    /// The relative variance of one pass (`predicted` divides it by the passes left).
+    pub pass_variance: f64,
     /// Part of `predicted` from light the method cannot find.
     pub missing: f64,
+}
+
+impl Candidate {
+    /// Sets `predicted` for `time_left` seconds of rendering.
+    fn predict_at(&mut self, time_left: f64) {
+        let passes = (time_left / self.pass_seconds).max(1.0);
+        self.predicted = self.pass_variance / passes + self.missing;
+    }
 }
 
 /// What `auto` chose and why.
@@ -175,8 +188,8 @@ fn can_miss_light(scene: &Scene, integrator: &str) -> Option<&'static str> {
 }
 
 /// The pilot's passes of the combined image of `guide` (`bsdf` or a guide with maps):
-/// moments of the combined, pt and lt layers, and the mean camera-path and light-path time
-/// per pass.
+/// moments of the combined, pt and lt layers, and the camera-path and light-path time of the
+/// fastest pass (as [`pass_seconds`]: other jobs on the machine only ever slow a pass down).
 struct Pilot {
     layers: [Moments; 3],
     camera_s: f64,
@@ -194,8 +207,8 @@ fn pilot_passes(
     let npix = scene.camera.pixel_count();
     let mut p = Pilot {
         layers: [Moments::new(npix), Moments::new(npix), Moments::new(npix)],
-        camera_s: 0.0,
-        light_s: 0.0,
+        camera_s: f64::INFINITY,
+        light_s: f64::INFINITY,
     };
     for b in 0..MAX_BATCHES {
         if b >= min_batches && until.is_none_or(|u| Instant::now() >= u) {
@@ -214,18 +227,26 @@ fn pilot_passes(
         for (m, (_, img)) in p.layers.iter_mut().zip(&r.layers) {
             m.add(img);
         }
-        p.camera_s += r.timings.camera_paths.as_secs_f64();
-        p.light_s += r.timings.light_paths.as_secs_f64();
+        let (c, l) = (
+            r.timings.camera_paths.as_secs_f64(),
+            r.timings.light_paths.as_secs_f64(),
+        );
+        if c + l < p.camera_s + p.light_s {
+            (p.camera_s, p.light_s) = (c, l);
+        }
     }
-    let n = p.layers[0].n as f64;
-    p.camera_s /= n;
-    p.light_s /= n;
     p
 }
 
 /// The time of one pass of `method` (its own path loop, no MIS bookkeeping): the fastest of
 /// three, since other jobs on the machine only ever slow a pass down.
-fn pass_seconds(scene: &Scene, opts: &RenderOptions, method: Method, g: &Guidance) -> f64 {
+fn pass_seconds(
+    scene: &Scene,
+    opts: &RenderOptions,
+    method: Method,
+    g: &Guidance,
+    repeat: usize,
+) -> f64 {
     let o = RenderOptions {
         method,
         spp: 1,
@@ -234,7 +255,7 @@ fn pass_seconds(scene: &Scene, opts: &RenderOptions, method: Method, g: &Guidanc
         auto: None,
         ..opts.clone()
     };
-    (0..3)
+    (0..repeat)
         .map(|_| {
             let r: RenderResult =
                 render_prepared(scene, &o, g, Duration::ZERO, StopRule::HalfPass, |_| {});
@@ -243,14 +264,14 @@ fn pass_seconds(scene: &Scene, opts: &RenderOptions, method: Method, g: &Guidanc
         .fold(f64::INFINITY, f64::min)
 }
 
-/// The candidates' predictions from one pilot: `(layer index, integrator name)` per
-/// candidate of `guide`.
-fn predict(
+/// What one pilot measured of the candidates of `guide` (the combined image, pt and lt: its
+/// three layers): the relative variance per pass and the missing light. `predicted` is set
+/// later, for every candidate at the same time left ([`Candidate::predict_at`]).
+fn measure(
     scene: &Scene,
     pilot: &Pilot,
     reference: &Moments,
     seconds: [f64; 3],
-    time_left: f64,
     guide: &str,
 ) -> Vec<Candidate> {
     let npix = reference.sum.len();
@@ -266,6 +287,7 @@ fn predict(
         (luminance(m / npix as f32) as f64).max(1e-20)
     };
     let k = pilot.layers[0].n as f64;
+    let k_ref = reference.n as f64;
     ["combined", "pt", "lt"]
         .iter()
         .enumerate()
@@ -280,19 +302,22 @@ fn predict(
                     let v = layer.var(i, c) / (scale * scale);
                     var += v / d;
                     if biased {
+                        // The squared difference of the two means, less what their noise
+                        // explains in expectation; summed signed over the image and clamped
+                        // once, so that noise alone adds no bias.
                         let diff = layer.mean(i, c) / scale - r;
-                        let noise = (v + reference.var(i, c) / (scale * scale)) / k;
-                        bias += (diff * diff - noise).max(0.0) / d;
+                        let noise = v / k + reference.var(i, c) / (scale * scale) / k_ref;
+                        bias += (diff * diff - noise) / d;
                     }
                 }
             }
             let n = (3 * npix) as f64;
-            let (var, bias) = (var / n, bias / n);
-            let passes = (time_left / seconds[l]).max(1.0);
+            let (var, bias) = (var / n, (bias / n).max(0.0));
             Candidate {
                 method: format!("{name}-{guide}"),
-                predicted: var / passes + bias,
+                predicted: f64::INFINITY,
                 pass_seconds: seconds[l],
+                pass_variance: var,
                 missing: bias,
             }
         })
@@ -316,7 +341,28 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     }
     let budget = opts.time;
     let unguided = Guidance::default();
-    // ---- Unguided pilot: the combined image's three layers, and pt's and lt's own pass times ----
+    // ---- pt's and lt's own pass times; a budget too short for a pilot ----
+    let t_pt1 = pass_seconds(scene, opts, find("pt", "bsdf"), &unguided, 1);
+    let t_lt1 = pass_seconds(scene, opts, find("lt", "bsdf"), &unguided, 1);
+    if let Some(t) = budget.filter(|t| *t < MIN_BUDGET_PAIRS * (t_pt1 + t_lt1)) {
+        let method = *spec
+            .candidates
+            .iter()
+            .find(|m| !m.guide.uses_particles())
+            .unwrap_or(&spec.candidates[0]);
+        return Choice {
+            method,
+            reason: format!(
+                "{}: no pilot, the budget of {t:.2} s is under {MIN_BUDGET_PAIRS} passes of pt and lt ({:.3} s a pair)",
+                method.name(),
+                t_pt1 + t_lt1
+            ),
+            candidates: Vec::new(),
+            pilot: start.elapsed(),
+            guidance: None,
+        };
+    }
+    // ---- Unguided pilot: the combined image's three layers ----
     let until = budget.map(|t| start + Duration::from_secs_f64(PILOT_SHARE * t));
     let pilot = pilot_passes(
         scene,
@@ -326,8 +372,8 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         until,
         MIN_BATCHES,
     );
-    let t_pt = pass_seconds(scene, opts, find("pt", "bsdf"), &unguided);
-    let t_lt = pass_seconds(scene, opts, find("lt", "bsdf"), &unguided);
+    let t_pt = t_pt1.min(pass_seconds(scene, opts, find("pt", "bsdf"), &unguided, 2));
+    let t_lt = t_lt1.min(pass_seconds(scene, opts, find("lt", "bsdf"), &unguided, 2));
     // The combined pass's camera (light) half costs more than pt's (lt's) pass by the MIS
     // bookkeeping: the same ratio is assumed for the guided passes.
     let cam_ratio = (t_pt / pilot.camera_s.max(1e-9)).min(1.0);
@@ -347,14 +393,15 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         Some(t) => (t - spent).max(1e-3),
         None => opts.spp as f64 * t_pt,
     };
-    let mut all = predict(
+    let mut all = measure(
         scene,
         &pilot,
         &reference,
         [pilot.camera_s + pilot.light_s, t_pt, t_lt],
-        horizon(start.elapsed().as_secs_f64()),
         "bsdf",
     );
+    // Guided maps are piloted even when they do not fit when nothing else is wanted.
+    let only_guided = spec.candidates.iter().all(|m| m.guide.uses_particles());
     let mut notes = Vec::new();
     // ---- Guided pilots, when their maps fit ----
     let mut built: Vec<(String, Guidance)> = Vec::new();
@@ -378,11 +425,12 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         let npix = scene.camera.pixel_count() as f64;
         let maps_est = last_guided.unwrap_or(
             4.0 * (scene.maps.photons as f64 * t_lt / npix
-                + scene.maps.importons as f64 * t_pt / npix),
+                + scene.maps.importons as f64 * t_pt / npix)
+                + budget.map_or(0.0, |t| PILOT_SHARE * t),
         );
         let spent = guided_start.elapsed().as_secs_f64();
         let allowed = GUIDED_MAPS_SHARE * horizon(0.0);
-        if spent + maps_est > allowed {
+        if spent + maps_est > allowed && !only_guided {
             notes.push(format!(
                 "{gname} not piloted: its maps and pilot would take about {maps_est:.2} s, more than {:.0}% of {:.2} s",
                 100.0 * GUIDED_MAPS_SHARE,
@@ -406,19 +454,29 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             p.camera_s * cam_ratio,
             p.light_s * light_ratio,
         ];
-        all.extend(predict(
-            scene,
-            &p,
-            &reference,
-            secs,
-            horizon(start.elapsed().as_secs_f64()),
-            gname,
-        ));
+        all.extend(measure(scene, &p, &reference, secs, gname));
         built.push((gname.to_string(), gd));
+    }
+    // Every candidate predicted at the same time left: what remains after the whole pilot.
+    let time_left = horizon(start.elapsed().as_secs_f64());
+    for c in &mut all {
+        c.predict_at(time_left);
     }
     all.retain(|c| wanted(&c.method));
     all.sort_by(|a, b| a.predicted.total_cmp(&b.predicted));
-    let best = all[0].clone();
+    let Some(best) = all.first().cloned() else {
+        return Choice {
+            method: spec.candidates[0],
+            reason: format!(
+                "{}: no candidate could be piloted ({})",
+                spec.candidates[0].name(),
+                notes.join("; ")
+            ),
+            candidates: all,
+            pilot: start.elapsed(),
+            guidance: None,
+        };
+    };
     let method = Method::parse(&best.method).expect("a candidate");
     let others: Vec<String> = all[1..]
         .iter()
@@ -428,7 +486,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         "{} predicted relative MSE {:.3e} at {:.1} s ({}); pilot {} passes",
         best.method,
         best.predicted,
-        horizon(start.elapsed().as_secs_f64()),
+        time_left,
         others.join(", "),
         pilot.layers[0].n
     );

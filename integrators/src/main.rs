@@ -1011,6 +1011,9 @@ fn render_command(
         for s in scene.effects.skipped() {
             eprintln!("skips: {s}");
         }
+        if !footprint_integrators::skips::particles_stored(scene) {
+            eprintln!("skips: particle passes and maps (no surface stores particles)");
+        }
     }
     if scene.stats.degenerate_skipped > 0 {
         eprintln!(
@@ -1084,15 +1087,7 @@ fn render_command(
                     opts.method.name()
                 );
             }
-            let pass = footprint_integrators::passes::PassSettings {
-                paths: 0,
-                max_depth: opts.max_depth,
-                rr_depth: footprint_integrators::walk::RR_START_DEPTH,
-                seed: opts.seed,
-                soft_glossy_max: scene.maps.soft_glossy_max,
-                specialise: true,
-            };
-            Guidance::build(scene, &opts.method, &opts.guide_params, &pass, &heap_bytes)
+            footprint_integrators::render::guidance(scene, &opts, &heap_bytes)
         }
     };
     let maps_load = start.elapsed();

@@ -120,9 +120,6 @@ impl Effects {
         if !self.shading_normals {
             s.push("shading-normal interpolation (no vertex normals)");
         }
-        if !self.diffuse && !self.glossy {
-            s.push("particle passes and maps (no surface stores particles)");
-        }
         s
     }
 }
