@@ -110,6 +110,13 @@ fn a_stale_reference_cache_is_rendered_again() {
     assert!(how.starts_with("rendered"), "{how}");
     let (_, how) = reference(&path, &scene, None, 8, 4, None, &mut log).unwrap();
     assert!(how.starts_with("cached"), "{how}");
+    // A cache folder that does not exist yet is made (the reference is not rendered in vain).
+    let dir = path.with_file_name("new-cache-folder").join("deeper");
+    let _ = std::fs::remove_dir_all(path.with_file_name("new-cache-folder"));
+    let (_, how) = reference(&path, &scene, None, 8, 4, Some(&dir), &mut log).unwrap();
+    assert!(how.starts_with("rendered"), "{how}");
+    let (_, how) = reference(&path, &scene, None, 8, 4, Some(&dir), &mut log).unwrap();
+    assert!(how.starts_with("cached"), "{how}");
 }
 
 /// Runs a short comparison into `out`; returns its stderr.

@@ -137,6 +137,20 @@ fn every_pair_agrees_with_the_reference_on_desk() {
     agreement(&scene, 2, 16, 16, 8, &PAIRS, &GuideParams::default());
 }
 
+/// Maps that refine each other (two rounds: the second round's light pass guided by the
+/// first importance map, its view pass by the first photon map) with guided MIS weights:
+/// every guided pair still agrees with unguided path tracing, on cornell and door.
+#[test]
+fn guided_passes_agree_with_the_reference() {
+    let mut cornell = small("cornell", 24, 24, 20_000);
+    cornell.maps.rounds = 2;
+    let guided = ["pt-footprint", "lt-footprint", "combined-footprint", "combined-grid"];
+    agreement(&cornell, 3, 20, 2, 6, &guided, &GuideParams::default());
+    let mut door = small("door", 24, 24, 40_000);
+    door.maps.rounds = 2;
+    agreement(&door, 2, 20, 4, 8, &guided, &GuideParams::default());
+}
+
 /// The paper's per-event preparation (no guide cache) stays correct.
 #[test]
 fn per_event_guiding_agrees_with_the_reference_on_cornell() {

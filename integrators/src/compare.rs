@@ -199,6 +199,12 @@ pub fn reference(
             cache.display()
         ));
     }
+    // The cache's folder is made before the render: a long reference is not rendered only to
+    // be lost for want of a folder.
+    if let Some(d) = cache.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(d)
+            .with_context(|| format!("cannot create the reference cache folder {}", d.display()))?;
+    }
     log(&format!(
         "rendering the reference: combined image, BSDF sampling, {spp} spp"
     ));
@@ -224,19 +230,23 @@ pub fn reference(
             ));
         }
     });
-    write_exr(
+    // A cache that cannot be written costs the next run a render, not this one its result.
+    let stored = match write_exr(
         &cache,
         &[("combined", &r.image)],
         &[("footprint/reference_key".into(), key)],
-    )
-    .with_context(|| format!("cannot write the reference cache {}", cache.display()))?;
+    ) {
+        Ok(()) => cache.display().to_string(),
+        Err(e) => {
+            log(&format!(
+                "warning: the reference is not cached ({e}); this run goes on with it"
+            ));
+            "not cached".to_string()
+        }
+    };
     Ok((
         r.image,
-        format!(
-            "rendered: {} ({:.1} s)",
-            cache.display(),
-            r.elapsed.as_secs_f64()
-        ),
+        format!("rendered: {stored} ({:.1} s)", r.elapsed.as_secs_f64()),
     ))
 }
 
