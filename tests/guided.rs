@@ -144,7 +144,12 @@ fn every_pair_agrees_with_the_reference_on_desk() {
 fn guided_passes_agree_with_the_reference() {
     let mut cornell = small("cornell", 24, 24, 20_000);
     cornell.maps.rounds = 2;
-    let guided = ["pt-footprint", "lt-footprint", "combined-footprint", "combined-grid"];
+    let guided = [
+        "pt-footprint",
+        "lt-footprint",
+        "combined-footprint",
+        "combined-grid",
+    ];
     agreement(&cornell, 3, 20, 2, 6, &guided, &GuideParams::default());
     let mut door = small("door", 24, 24, 40_000);
     door.maps.rounds = 2;
