@@ -710,7 +710,8 @@ def cmd_convert(args):
 
 def cmd_check(args):
     """Both renderers on each scene: K independent batches each; the image means must agree
-    within --tolerance (2%) per channel, or the conversion's notes must say why not."""
+    within --tolerance (2%) per channel, or within 4 standard errors of the ratio when the
+    batches are noisier, or the conversion's notes must say why not."""
     import numpy as np
 
     if args.no_install and not luxcore_available():
@@ -736,11 +737,15 @@ def cmd_check(args):
         b, tb = lux_batches(ls, args.method, args.batches, spp, args.rr_depth)
         ra, rb, ratio, se = mean_ratio(a, b)
         t = vm.compare(a, b, args.block)
-        ok = bool(np.all(np.abs(ratio - 1) <= args.tolerance))
+        # Within --tolerance, or within 4 standard errors of the ratio where the batches are
+        # noisier than that (door at 4 x 128 spp: 1.2% per channel); 4 sigma over 3 channels
+        # and two scenes leaves a false alarm about once in 2500 checks.
+        bound = np.maximum(args.tolerance, 4.0 * se)
+        ok = bool(np.all(np.abs(ratio - 1) <= bound))
         failed += not ok
         print(f"{'PASS' if ok else 'FAIL'} {s}: {args.batches} x {spp} spp, -D {defines}, LuxCore {args.method}")
         print(f"     means footprint {['%.5f' % x for x in ra]} luxcore {['%.5f' % x for x in rb]}")
-        print(f"     ratio footprint/luxcore {['%.4f' % x for x in ratio]} (+- {['%.4f' % x for x in se]} standard error)")
+        print(f"     ratio footprint/luxcore {['%.4f' % x for x in ratio]} (+- {['%.4f' % x for x in se]} standard error; bound {['%.4f' % x for x in bound]})")
         print(f"     per {args.block}x{args.block} block: max |t| {t['max_t']:.2f} (limit {t['crit']:.2f}), "
               f"{t['failing']} of {t['blocks']} block-channels beyond it (informative: converted approximations show here)")
         print(f"     time footprint {ta:.1f} s, luxcore {tb:.1f} s")
