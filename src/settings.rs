@@ -241,6 +241,9 @@ pub struct GuideParams {
     /// The combined image's MIS weights use the densities the guided samplers really draw
     /// with (with the guide cache: a region lookup per vertex) instead of the unguided ones.
     pub guided_mis: bool,
+    /// Side of the per-hemisphere grid on which each cached region's guide density is
+    /// tabulated for those weights (`src/guide/table.rs`); 0 reads the exact density.
+    pub mis_table: usize,
     /// Particles whose `|cos θ_p|` is below this are left out, identically in sampling and
     /// evaluation (a cap confined to the hemisphere would have no room).
     #[serde(skip)]
@@ -261,6 +264,7 @@ impl Default for GuideParams {
             region_seeds: 1024,
             min_depth: 2,
             guided_mis: true,
+            mis_table: 16,
             grazing_cos_min: 1e-3,
         }
     }
@@ -310,6 +314,15 @@ impl GuideParams {
             return e(
                 "region_seeds",
                 format!("must be in 8..=1000000, got {}", self.region_seeds),
+            );
+        }
+        if self.mis_table == 1 || self.mis_table > 256 {
+            return e(
+                "mis_table",
+                format!(
+                    "must be 0 (the exact density) or a side length in 2..=256, got {}",
+                    self.mis_table
+                ),
             );
         }
         if self.min_depth == 0 || self.min_depth > 1024 {

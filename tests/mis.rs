@@ -2,7 +2,8 @@
 //! bundled scene, the three strategies' weights (camera path hitting the light, next-event
 //! connection, light path connected to the camera), each computed by the running trackers
 //! of its own subpath, sum to one, with the unguided densities and with the guided ones
-//! (guide cache built from the scene's maps). A density that one side computed differently
+//! (guide cache built from the scene's maps; the regions' tabulated densities, the default,
+//! and the exact ones). A density that one side computed differently
 //! from the other (a throughput-dependent channel mixture, a missed emission term, a
 //! forward/reverse mix-up) breaks the sum by far more than the tolerance. Deterministic
 //! paths from fixed seeds. Tolerance 1e-3: the two sides evaluate the same densities in f32
@@ -54,14 +55,18 @@ fn random_path(scene: &Scene, rng: &mut Rng, len: usize) -> Option<Path> {
     Some(Path { hits, delta })
 }
 
-/// The three weights of every checked path, with the densities `guided` or not.
-fn check_scene(name: &str, guided: bool) -> Vec<[f32; 3]> {
+/// The three weights of every checked path, with the densities `guided` or not; guided
+/// densities from each region's table (`mis_table` > 0) or exact (0).
+fn check_scene(name: &str, guided: bool, mis_table: usize) -> Vec<[f32; 3]> {
     let mut scene = load_scene(&scene_path(name)).unwrap();
     scene.camera = scene.camera.with_resolution(32, 32).unwrap();
     scene.maps.photons = 30_000;
     scene.maps.importons = 30_000;
     let method = Method::parse("combined-footprint").unwrap();
-    let params = GuideParams::default();
+    let params = GuideParams {
+        mis_table,
+        ..GuideParams::default()
+    };
     let pass = PassSettings {
         paths: 0,
         max_depth: 8,
@@ -164,7 +169,9 @@ fn check_scene(name: &str, guided: bool) -> Vec<[f32; 3]> {
         checked += 1;
         weights.push([w0, w1, wk]);
     }
-    eprintln!("{name}, guided {guided}: {checked} paths, largest |sum - 1| {worst:.2e}");
+    eprintln!(
+        "{name}, guided {guided}, table {mis_table}: {checked} paths, largest |sum - 1| {worst:.2e}"
+    );
     assert!(checked > 500, "{name}: only {checked} paths checked");
     weights
 }
@@ -172,8 +179,22 @@ fn check_scene(name: &str, guided: bool) -> Vec<[f32; 3]> {
 #[test]
 fn weights_sum_to_one_on_random_paths_in_every_bundled_scene() {
     for name in ["cornell", "door", "desk"] {
-        let unguided = check_scene(name, false);
-        let guided = check_scene(name, true);
+        let table = GuideParams::default().mis_table;
+        assert!(table > 0, "the default reads tables");
+        let unguided = check_scene(name, false, table);
+        let guided = check_scene(name, true, table);
+        let exact = check_scene(name, true, 0);
+        // The tables stand in for the exact densities: the weights differ from those.
+        let from_exact = exact
+            .iter()
+            .zip(&guided)
+            .filter(|(a, b)| (0..3).any(|s| (a[s] - b[s]).abs() > 1e-3))
+            .count();
+        eprintln!(
+            "{name}: tabulated densities change the weights of {from_exact} of {} paths",
+            guided.len()
+        );
+        assert!(from_exact > 0, "{name}: the tables are not read");
         // The guided densities are really used: they change the weights of many paths.
         let changed = unguided
             .iter()

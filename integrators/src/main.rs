@@ -105,6 +105,11 @@ struct GuideParamArgs {
     /// unguided ones (off) [default: guide.guided_mis, else on]
     #[arg(long, value_parser = ["on", "off"])]
     guided_mis: Option<String>,
+    /// Side of the per-hemisphere table of each cached region's density that those guided
+    /// MIS weights read; 0 reads the exact density (slower, the same image in expectation)
+    /// [default: guide.mis_table, else 16]
+    #[arg(long)]
+    mis_table: Option<usize>,
 }
 
 impl GuideParamArgs {
@@ -141,6 +146,9 @@ impl GuideParamArgs {
         }
         if let Some(v) = &self.guided_mis {
             p.guided_mis = v == "on";
+        }
+        if let Some(v) = self.mis_table {
+            p.mis_table = v;
         }
         p.validate().map_err(|e| anyhow::anyhow!(e.as_flag_error()))
     }
@@ -875,10 +883,11 @@ fn compare_variants(
                 "region_particles" => opts.guide_params.region_particles = num as usize,
                 "region_seeds" => opts.guide_params.region_seeds = num as usize,
                 "min_depth" => opts.guide_params.min_depth = num as u16,
+                "mis_table" => opts.guide_params.mis_table = num as usize,
                 "importons" => maps.importons = num as usize,
                 "map_rounds" => maps.rounds = num as u32,
                 other => bail!(
-                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, k_g, grid, region_particles, region_seeds, min_depth, photons, importons or map_rounds)"
+                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, k_g, grid, region_particles, region_seeds, min_depth, mis_table, photons, importons or map_rounds)"
                 ),
             }
             out.push(make(
@@ -1127,7 +1136,7 @@ fn render_command(
         (
             "footprint/guide_params".to_string(),
             format!(
-                "k_p={} k_g={}x{} k_r={} p_bsdf={} radius_rule={} grid={}x{} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} photons={} importons={} max_dist={}",
+                "k_p={} k_g={}x{} k_r={} p_bsdf={} radius_rule={} grid={}x{} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} mis_table={} photons={} importons={} max_dist={}",
                 p.k_p,
                 p.k_g_side,
                 p.k_g_side,
@@ -1141,6 +1150,7 @@ fn render_command(
                 p.region_seeds,
                 p.min_depth,
                 if p.guided_mis { "on" } else { "off" },
+                p.mis_table,
                 scene.maps.photons,
                 scene.maps.importons,
                 scene.map_max_dist()

@@ -23,6 +23,7 @@
 //! the thread count: regions are built independently, without random numbers.
 
 use crate::guide::particle_map::{ParticleMap, normal_bucket};
+use crate::guide::table::DirectionTable;
 use crate::guide::{Guide, GuideDistribution, GuideParticle};
 use crate::math::{Frame, SIGNED_AXES};
 use crate::settings::GuideParams;
@@ -44,6 +45,9 @@ pub struct Region {
     pub normal: Vec3,
     pub particles: u32,
     pub distribution: Option<Box<dyn GuideDistribution>>,
+    /// The distribution tabulated for the combined image's MIS weights (`None`: they read
+    /// the exact density).
+    pub table: Option<DirectionTable>,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -138,6 +142,11 @@ impl GuideCache {
                 .iter()
                 .filter_map(|r| r.distribution.as_ref())
                 .map(|d| d.heap_bytes())
+                .sum::<usize>()
+            + guiding
+                .iter()
+                .filter_map(|r| r.table.as_ref())
+                .map(|t| t.heap_bytes())
                 .sum::<usize>();
         let stats = CacheStats {
             seeds: n_seeds,
@@ -284,6 +293,7 @@ fn build_region(
         normal: job.normal,
         particles: 0,
         distribution: None,
+        table: None,
     };
     let mut neighbors = Vec::new();
     let found = map.query(
@@ -316,6 +326,13 @@ fn build_region(
         return out;
     }
     out.particles = particles.len() as u32;
-    out.distribution = guide.build(&Frame::from_z(job.normal), &particles, params);
+    let frame = Frame::from_z(job.normal);
+    out.distribution = guide.build(&frame, &particles, params);
+    if params.guided_mis && params.mis_table > 0 {
+        out.table = out
+            .distribution
+            .as_ref()
+            .and_then(|d| d.tabulate(&frame, params.mis_table));
+    }
     out
 }

@@ -29,6 +29,7 @@
 //!   sums `sample` searches.
 
 use crate::Rgb;
+use crate::guide::table::{DirectionTable, cap_points};
 use crate::guide::{ChannelMix, Guide, GuideDistribution, GuideParticle};
 use crate::math::{Frame, PI, safe_sqrt};
 use crate::rng::Rng;
@@ -79,7 +80,7 @@ pub fn cell_solid_angles(side: usize) -> Vec<f32> {
 }
 
 /// The cell solid angles for a grid side, computed once per side and kept.
-fn cell_solid_angles_cached(side: usize) -> &'static [f32] {
+pub(crate) fn cell_solid_angles_cached(side: usize) -> &'static [f32] {
     static CACHE: OnceLock<std::sync::Mutex<Vec<(usize, &'static [f32])>>> = OnceLock::new();
     let cache = CACHE.get_or_init(Default::default);
     let mut c = cache.lock().unwrap_or_else(|e| e.into_inner());
@@ -363,6 +364,21 @@ impl GuideDistribution for FootprintDistribution {
             }
         });
         p
+    }
+
+    /// Each cap's per-channel probability on its seven quadrature points
+    /// ([`cap_points`]).
+    fn tabulate(&self, frame: &Frame, side: usize) -> Option<DirectionTable> {
+        let points = self.caps.iter().zip(&self.probs).flat_map(|(cap, p)| {
+            let m = p.map(|x| x / 7.0);
+            cap_points(cap.dir, cap.one_minus_cos).map(|w| (w, m))
+        });
+        Some(DirectionTable::from_masses(
+            *frame,
+            side,
+            self.totals,
+            points,
+        ))
     }
 
     fn as_any(&self) -> &dyn std::any::Any {

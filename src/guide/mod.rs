@@ -18,6 +18,7 @@
 //! * [`sampler`]: what the integrators call at a scattering point: `prepare`, `sample`,
 //!   `pdf`, mixing the guide with BSDF sampling (`p_BSDF`) and falling back to the BSDF
 //!   where particles cannot guide.
+//! * [`table`]: a cached region's density tabulated for the combined image's MIS weights.
 //!
 //! Adding a guide: write `src/guide/NAME.rs` with a unit struct implementing [`Guide`] and
 //! a type implementing [`GuideDistribution`], declare the module below and add the struct
@@ -29,6 +30,7 @@ pub mod footprint;
 pub mod grid;
 pub mod particle_map;
 pub mod sampler;
+pub mod table;
 
 use crate::Rgb;
 use crate::bsdf::Lobes;
@@ -36,6 +38,7 @@ use crate::math::Frame;
 use crate::rng::Rng;
 use crate::settings::GuideParams;
 use glam::Vec3;
+use table::DirectionTable;
 
 /// A particle as a guide sees it: its incoming direction `Ψ_p` (world, unit, pointing away
 /// from the surface toward where it came from) and its weight per channel (`Φ_p` or `W_p`,
@@ -110,6 +113,13 @@ pub trait GuideDistribution: Send + Sync {
     fn sample(&self, mix: &ChannelMix, rng: &mut Rng) -> Option<Vec3>;
     /// Density per steradian of `sample` at the world direction `wi` (unit).
     fn pdf(&self, mix: &ChannelMix, wi: Vec3) -> f32;
+    /// The distribution tabulated on `side x side` cells per hemisphere of `frame` (the
+    /// frame it was built in) for the combined image's MIS weights ([`DirectionTable`]).
+    /// `None`: the weights read [`GuideDistribution::pdf`] (a distribution whose `pdf` is a
+    /// lookup already, as the grid's).
+    fn tabulate(&self, _frame: &Frame, _side: usize) -> Option<DirectionTable> {
+        None
+    }
     /// Heap bytes held (the guide cache reports its memory).
     fn heap_bytes(&self) -> usize;
     /// The concrete type, for tests and tools that inspect a prepared distribution.

@@ -19,7 +19,7 @@
 
 use crate::Rgb;
 use crate::bsdf::{Bsdf, TransportMode};
-use crate::guide::cache::GuideCache;
+use crate::guide::cache::{GuideCache, Region};
 use crate::guide::particle_map::{Neighbor, ParticleMap};
 use crate::guide::{ChannelMix, Guide, GuideDistribution, GuideParticle, guides_at};
 use crate::math::{Frame, is_valid_rgb, luminance};
@@ -343,18 +343,30 @@ impl<'a> GuidedSampler<'a> {
         if at.bsdf.is_delta() || !guides_at(&at.bsdf.lobes, self.soft_glossy_max) {
             return bsdf_pdf;
         }
-        let dist = match &self.source {
-            GuideSource::Cached(cache) => cache
-                .lookup(at.p, at.side_normal())
-                .and_then(|r| r.distribution.as_deref()),
-            GuideSource::Fixed(d) => Some(*d),
+        let white = LUMINANCE * at.bsdf.lobes.colour();
+        let guide_pdf = match &self.source {
+            GuideSource::Cached(cache) => match cache.lookup(at.p, at.side_normal()) {
+                // The region's table when it has one (src/guide/table.rs), else its density.
+                Some(Region {
+                    table: Some(t),
+                    distribution: Some(_),
+                    ..
+                }) => ChannelMix::new(white, t.channel_totals()).map(|mix| t.pdf(&mix, wi)),
+                Some(Region {
+                    distribution: Some(d),
+                    ..
+                }) => ChannelMix::new(white, d.channel_totals()).map(|mix| d.pdf(&mix, wi)),
+                _ => None,
+            },
+            GuideSource::Fixed(d) => {
+                ChannelMix::new(white, d.channel_totals()).map(|mix| d.pdf(&mix, wi))
+            }
             GuideSource::Bsdf | GuideSource::PerEvent { .. } => None,
         };
-        let white = LUMINANCE * at.bsdf.lobes.colour();
-        match dist.and_then(|d| ChannelMix::new(white, d.channel_totals()).map(|m| (d, m))) {
-            Some((d, mix)) => {
+        match guide_pdf {
+            Some(g) => {
                 let p = self.params.p_bsdf;
-                p * bsdf_pdf + (1.0 - p) * d.pdf(&mix, wi)
+                p * bsdf_pdf + (1.0 - p) * g
             }
             None => bsdf_pdf,
         }
