@@ -176,6 +176,14 @@ fn check_scene(name: &str, guided: bool, mis_table: usize) -> Vec<[f32; 3]> {
     weights
 }
 
+/// How many paths' weights differ by more than 1e-3 in some strategy.
+fn differing(a: &[[f32; 3]], b: &[[f32; 3]]) -> usize {
+    a.iter()
+        .zip(b)
+        .filter(|(x, y)| (0..3).any(|s| (x[s] - y[s]).abs() > 1e-3))
+        .count()
+}
+
 #[test]
 fn weights_sum_to_one_on_random_paths_in_every_bundled_scene() {
     for name in ["cornell", "door", "desk"] {
@@ -185,22 +193,14 @@ fn weights_sum_to_one_on_random_paths_in_every_bundled_scene() {
         let guided = check_scene(name, true, table);
         let exact = check_scene(name, true, 0);
         // The tables stand in for the exact densities: the weights differ from those.
-        let from_exact = exact
-            .iter()
-            .zip(&guided)
-            .filter(|(a, b)| (0..3).any(|s| (a[s] - b[s]).abs() > 1e-3))
-            .count();
+        let from_exact = differing(&exact, &guided);
         eprintln!(
             "{name}: tabulated densities change the weights of {from_exact} of {} paths",
             guided.len()
         );
         assert!(from_exact > 0, "{name}: the tables are not read");
         // The guided densities are really used: they change the weights of many paths.
-        let changed = unguided
-            .iter()
-            .zip(&guided)
-            .filter(|(a, b)| (0..3).any(|s| (a[s] - b[s]).abs() > 1e-3))
-            .count();
+        let changed = differing(&unguided, &guided);
         eprintln!(
             "{name}: guided densities change the weights of {changed} of {} paths",
             guided.len()
