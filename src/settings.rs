@@ -242,8 +242,14 @@ pub struct GuideParams {
     /// with (with the guide cache: a region lookup per vertex) instead of the unguided ones.
     pub guided_mis: bool,
     /// Side of the per-hemisphere grid on which each cached region's guide density is
-    /// tabulated for those weights (`src/guide/table.rs`); 0 reads the exact density.
+    /// tabulated for those weights (`src/guide/table.rs`); 0 reads the exact density. Only
+    /// footprints sampled from their caps (`raster = 0`) have a table: a rasterised
+    /// distribution's density is a lookup already.
     pub mis_table: usize,
+    /// Side of the equal-area grid per hemisphere on which a cached region's footprint
+    /// mixture is rasterised for sampling (`FootprintDistribution::rasterise`); 0 samples
+    /// the caps themselves (the paper's method).
+    pub raster: usize,
     /// Particles whose `|cos θ_p|` is below this are left out, identically in sampling and
     /// evaluation (a cap confined to the hemisphere would have no room).
     #[serde(skip)]
@@ -256,7 +262,7 @@ impl Default for GuideParams {
             k_p: 50,
             k_g_side: 32,
             k_r: 6.0,
-            p_bsdf: 0.3,
+            p_bsdf: 0.5,
             radius_rule: RadiusRule::SolidAngle,
             grid_side: 8,
             cache: true,
@@ -265,6 +271,7 @@ impl Default for GuideParams {
             min_depth: 2,
             guided_mis: true,
             mis_table: 16,
+            raster: 16,
             grazing_cos_min: 1e-3,
         }
     }
@@ -322,6 +329,15 @@ impl GuideParams {
                 format!(
                     "must be 0 (the exact density) or a side length in 2..=256, got {}",
                     self.mis_table
+                ),
+            );
+        }
+        if self.raster > 1024 {
+            return e(
+                "raster",
+                format!(
+                    "must be 0 (sample the caps) or a side length in 1..=1024, got {}",
+                    self.raster
                 ),
             );
         }

@@ -2,8 +2,9 @@
 //! bundled scene, the three strategies' weights (camera path hitting the light, next-event
 //! connection, light path connected to the camera), each computed by the running trackers
 //! of its own subpath, sum to one, with the unguided densities and with the guided ones
-//! (guide cache built from the scene's maps; the regions' tabulated densities, the default,
-//! and the exact ones). A density that one side computed differently
+//! (guide cache built from the scene's maps: footprints rasterised for sampling, the default,
+//! and footprints sampled from their caps with the weights read from each region's table or
+//! from the caps). A density that one side computed differently
 //! from the other (a throughput-dependent channel mixture, a missed emission term, a
 //! forward/reverse mix-up) breaks the sum by far more than the tolerance. Deterministic
 //! paths from fixed seeds. Tolerance 1e-3: the two sides evaluate the same densities in f32
@@ -55,18 +56,14 @@ fn random_path(scene: &Scene, rng: &mut Rng, len: usize) -> Option<Path> {
     Some(Path { hits, delta })
 }
 
-/// The three weights of every checked path, with the densities `guided` or not; guided
-/// densities from each region's table (`mis_table` > 0) or exact (0).
-fn check_scene(name: &str, guided: bool, mis_table: usize) -> Vec<[f32; 3]> {
+/// The three weights of every checked path, with the densities `guided` or not, under the
+/// guide settings `params` (what the regions sample from and what the weights read).
+fn check_scene(name: &str, guided: bool, params: &GuideParams) -> Vec<[f32; 3]> {
     let mut scene = load_scene(&scene_path(name)).unwrap();
     scene.camera = scene.camera.with_resolution(32, 32).unwrap();
     scene.maps.photons = 30_000;
     scene.maps.importons = 30_000;
     let method = Method::parse("combined-footprint").unwrap();
-    let params = GuideParams {
-        mis_table,
-        ..GuideParams::default()
-    };
     let pass = PassSettings {
         paths: 0,
         max_depth: 8,
@@ -75,9 +72,9 @@ fn check_scene(name: &str, guided: bool, mis_table: usize) -> Vec<[f32; 3]> {
         soft_glossy_max: scene.maps.soft_glossy_max,
         specialise: true,
     };
-    let g = Guidance::build(&scene, &method, &params, &pass, &|| None);
-    let camera = g.camera_sampler(&scene, &method, &params);
-    let light = g.light_sampler(&scene, &method, &params);
+    let g = Guidance::build(&scene, &method, params, &pass, &|| None);
+    let camera = g.camera_sampler(&scene, &method, params);
+    let light = g.light_sampler(&scene, &method, params);
     let d = Densities {
         camera: &camera,
         light: &light,
@@ -170,7 +167,8 @@ fn check_scene(name: &str, guided: bool, mis_table: usize) -> Vec<[f32; 3]> {
         weights.push([w0, w1, wk]);
     }
     eprintln!(
-        "{name}, guided {guided}, table {mis_table}: {checked} paths, largest |sum - 1| {worst:.2e}"
+        "{name}, guided {guided}, raster {}, table {}: {checked} paths, largest |sum - 1| {worst:.2e}",
+        params.raster, params.mis_table
     );
     assert!(checked > 500, "{name}: only {checked} paths checked");
     weights
@@ -187,16 +185,24 @@ fn differing(a: &[[f32; 3]], b: &[[f32; 3]]) -> usize {
 #[test]
 fn weights_sum_to_one_on_random_paths_in_every_bundled_scene() {
     for name in ["cornell", "door", "desk"] {
-        let table = GuideParams::default().mis_table;
-        assert!(table > 0, "the default reads tables");
-        let unguided = check_scene(name, false, table);
-        let guided = check_scene(name, true, table);
-        let exact = check_scene(name, true, 0);
+        // The defaults (footprints rasterised for sampling, whose grid the weights read
+        // exactly), and footprints sampled from their caps with the weights read from each
+        // region's table or from the caps.
+        let defaults = GuideParams::default();
+        let caps = |mis_table| GuideParams {
+            raster: 0,
+            mis_table,
+            ..GuideParams::default()
+        };
+        let unguided = check_scene(name, false, &defaults);
+        let guided = check_scene(name, true, &defaults);
+        let tabulated = check_scene(name, true, &caps(16));
+        let exact = check_scene(name, true, &caps(0));
         // The tables stand in for the exact densities: the weights differ from those.
-        let from_exact = differing(&exact, &guided);
+        let from_exact = differing(&exact, &tabulated);
         eprintln!(
             "{name}: tabulated densities change the weights of {from_exact} of {} paths",
-            guided.len()
+            tabulated.len()
         );
         assert!(from_exact > 0, "{name}: the tables are not read");
         // The guided densities are really used: they change the weights of many paths.

@@ -313,7 +313,7 @@ fn grid_masses(
     );
     let p_bsdf = params.p_bsdf;
     let mut m: Vec<f64> = test.masses_from_pdf(|d| p_bsdf as f64 * at.bsdf.pdf(at.wo, d) as f64);
-    let side = params.grid_side;
+    let side = grid.side();
     let overlap = |a0: f64, a1: f64, b0: f64, b1: f64| (a1.min(b1) - a0.max(b0)).max(0.0);
     for hemi in [1.0f64, -1.0] {
         for j in 0..side {
@@ -645,6 +645,98 @@ fn footprint_pdf_integrates_to_one() {
     }
 }
 
+/// The rasterised footprint mixture (`raster`, what sampling reads when it is on) is the
+/// footprints' density smoothed over its cells: on bins of 4 x 4 of its cells (the
+/// equal-area `(1 - |cos θ|, φ)` square, 8 x 8 bins per hemisphere) its masses agree with
+/// the caps' masses integrated in each cap's own coordinates (100 x 100 points), and its
+/// channel totals, which the channel mixture reads, are the footprints'. The quadrature
+/// puts each cap's mass on points inside the cap, so mass can only move between bins a cap
+/// straddles, by less than one cell's width; bound: total variation 0.05 (a wrong frame, a
+/// channel scaled by the wrong total or a hemisphere swapped moves far more).
+#[test]
+fn rasterised_footprints_keep_the_footprint_density() {
+    let side = 32;
+    let bins = 8;
+    let bin_of = |frame: &Frame, w: Vec3| -> usize {
+        let d = frame.to_local(w);
+        let mut phi = d.y.atan2(d.x);
+        if phi < 0.0 {
+            phi += std::f32::consts::TAU;
+        }
+        let u = (1.0 - d.z.abs()).clamp(0.0, 1.0);
+        let v = (phi / std::f32::consts::TAU).clamp(0.0, 1.0);
+        let i = ((u * bins as f32) as usize).min(bins - 1);
+        let j = ((v * bins as f32) as usize).min(bins - 1);
+        (if d.z >= 0.0 { 0 } else { bins * bins }) + j * bins + i
+    };
+    let frame = Frame::from_z(Vec3::Z);
+    let params = params(RadiusRule::SolidAngle);
+    for c in configs() {
+        let particles = guide_particles(&frame, &c.particles, &params);
+        let dist = FootprintDistribution::build(&frame, &particles, &params);
+        if dist.caps.is_empty() {
+            continue;
+        }
+        let raster = dist.rasterise(&frame, side);
+        let (a, b) = (dist.channel_totals(), raster.channel_totals());
+        assert!(
+            ((a - b).abs() / a.max(Rgb::splat(1e-30))).max_element() < 1e-4,
+            "{}: totals {a:?} against {b:?}",
+            c.name
+        );
+        for mix in [ChannelMix([1.0, 0.0, 0.0]), ChannelMix([0.2, 0.3, 0.5])] {
+            let mut exact = vec![0.0f64; 2 * bins * bins];
+            let n = 100;
+            for (i, cap) in dist.caps.iter().enumerate() {
+                let prob = dist.probability(&mix, i) as f64;
+                let (t1, t2) = cap.dir.any_orthonormal_pair();
+                for a in 0..n {
+                    let omc = (a as f64 + 0.5) / n as f64 * cap.one_minus_cos as f64;
+                    let sin = (omc * (2.0 - omc)).max(0.0).sqrt();
+                    for b in 0..n {
+                        let phi = (b as f64 + 0.5) / n as f64 * std::f64::consts::TAU;
+                        let w = (cap.dir.as_dvec3() * (1.0 - omc)
+                            + (t1.as_dvec3() * phi.cos() + t2.as_dvec3() * phi.sin()) * sin)
+                            .as_vec3();
+                        exact[bin_of(&frame, w)] += prob / (n * n) as f64;
+                    }
+                }
+            }
+            // The raster's cells are uniform: its mass in a cell is pdf x solid angle.
+            let mut rast = vec![0.0f64; 2 * bins * bins];
+            let cell = raster.cell_solid_angle() as f64;
+            for hemi in [1.0f32, -1.0] {
+                for j in 0..side {
+                    for i in 0..side {
+                        let cos_t = 1.0 - (i as f32 + 0.5) / side as f32;
+                        let phi = std::f32::consts::TAU * (j as f32 + 0.5) / side as f32;
+                        let sin_t = (1.0 - cos_t * cos_t).sqrt();
+                        let w = frame.to_world(Vec3::new(
+                            sin_t * phi.cos(),
+                            sin_t * phi.sin(),
+                            hemi * cos_t,
+                        ));
+                        rast[bin_of(&frame, w)] += raster.pdf(&mix, w) as f64 * cell;
+                    }
+                }
+            }
+            let total: f64 = rast.iter().sum();
+            let tv: f64 = 0.5
+                * exact
+                    .iter()
+                    .zip(&rast)
+                    .map(|(x, y)| (x - y).abs())
+                    .sum::<f64>();
+            eprintln!(
+                "{}, mix {:?}: rasterised mass {total:.5}, total variation to the caps {tv:.4}",
+                c.name, mix.0
+            );
+            assert!((total - 1.0).abs() < 1e-3, "{}: mass {total}", c.name);
+            assert!(tv < 0.05, "{}: total variation {tv}", c.name);
+        }
+    }
+}
+
 /// The cap solid angle in f32 matches an f64 reference for sine-radii from 1e-6 to 1.
 #[test]
 fn cap_solid_angle_is_accurate_in_f32() {
@@ -725,7 +817,8 @@ fn too_few_particles_fall_back_to_the_bsdf() {
 /// The estimator a path tracer forms at a vertex, `f · |cos θ_s| / pdf` over sampled
 /// directions, has the mean `∫ f |cos θ_s| dω` whatever the sampler: for a white Lambertian
 /// that is its albedo with respect to the shading normal, 1 when the shading normal is the
-/// geometric one. Checked for every guide (footprints under both radius rules, the grid) at
+/// geometric one. Checked for every guide (footprints under both radius rules, footprints
+/// rasterised for sampling, the grid) at
 /// tiny caps (particles in a cone of 0.01 rad, and the literal rule's caps of about 1e-3
 /// sr), grazing particles and tilted shading normals. A sample whose pdf misses its own cap
 /// (the f32 round trip at a cap's rim) would weigh 1e4 to 1e6 times too much and move the
@@ -760,7 +853,7 @@ fn guided_samplers_estimate_the_albedo_of_a_white_lambertian() {
         .collect();
     let tilts = [Vec3::Z, (Vec3::Z + Vec3::new(0.35, -0.2, 0.0)).normalize()];
     let n = 400_000;
-    let samplers = 4;
+    let samplers = 5;
     let tests = 2 * tilts.len() * samplers;
     let crit = common::t_critical(sidak(0.01, tests), (n - 1) as f64);
     for (name, particles) in [("tiny cone", &cone), ("grazing", &grazing)] {
@@ -793,17 +886,19 @@ fn guided_samplers_estimate_the_albedo_of_a_white_lambertian() {
             } else {
                 (ref_mean, ref_se)
             };
-            for (label, rule, grid) in [
-                ("footprint solid-angle", RadiusRule::SolidAngle, false),
-                ("footprint literal", RadiusRule::Literal, false),
-                ("grid", RadiusRule::SolidAngle, true),
+            for (label, rule, kind) in [
+                ("footprint solid-angle", RadiusRule::SolidAngle, "caps"),
+                ("footprint literal", RadiusRule::Literal, "caps"),
+                ("footprint rasterised", RadiusRule::SolidAngle, "raster"),
+                ("grid", RadiusRule::SolidAngle, "grid"),
             ] {
                 let params = params(rule);
                 let ps = guide_particles(&frame, particles, &params);
-                let dist: Box<dyn GuideDistribution> = if grid {
-                    Box::new(GridDistribution::build(&frame, &ps, params.grid_side))
-                } else {
-                    Box::new(FootprintDistribution::build(&frame, &ps, &params))
+                let fp = FootprintDistribution::build(&frame, &ps, &params);
+                let dist: Box<dyn GuideDistribution> = match kind {
+                    "grid" => Box::new(GridDistribution::build(&frame, &ps, params.grid_side)),
+                    "raster" => Box::new(fp.rasterise(&frame, 32)),
+                    _ => Box::new(fp),
                 };
                 let (guided, (mean, se)) = estimate(&fixed(dist.as_ref(), &params), 11);
                 assert!(guided, "{name} {label}: not guided");
@@ -880,11 +975,15 @@ fn cached_regions_pass_chi_square_with_coloured_throughput() {
         (Vec3::Z + Vec3::new(0.2, 0.1, 0.0)).normalize(),
         Vec3::Z,
     );
-    let guides: [&dyn Guide; 2] = [&FootprintGuide, &GridGuide];
+    // Footprints rasterised for sampling (the default), footprints sampled from their caps,
+    // and the grid.
+    let guides: [(&dyn Guide, usize); 3] =
+        [(&FootprintGuide, 16), (&FootprintGuide, 0), (&GridGuide, 0)];
     let alpha = sidak(0.01, guides.len());
-    for guide in guides {
+    for (guide, raster) in guides {
         let params = GuideParams {
             region_particles: 1000,
+            raster,
             ..GuideParams::default()
         };
         let cache = GuideCache::build(&map, guide, &seeds, &params, 0.2);
@@ -937,7 +1036,7 @@ fn cached_regions_pass_chi_square_with_coloured_throughput() {
             &masses,
         );
         eprintln!(
-            "cached {} ({} particles): chi2 {:.0} dof {} p {:.3e}, channel mixture {:?}",
+            "cached {} (raster {raster}, {} particles): chi2 {:.0} dof {} p {:.3e}, channel mixture {:?}",
             guide.name(),
             region.particles,
             r.chi2,

@@ -76,7 +76,7 @@ struct GuideParamArgs {
     /// Footprint radius scale k_r [default: guide.k_r, else 6]
     #[arg(long, allow_negative_numbers = true)]
     k_r: Option<f32>,
-    /// Probability of sampling the BSDF where guiding [default: guide.p_bsdf, else 0.3]
+    /// Probability of sampling the BSDF where guiding [default: guide.p_bsdf, else 0.5]
     #[arg(long, allow_negative_numbers = true)]
     p_bsdf: Option<f32>,
     /// Footprint radius rule [default: guide.radius_rule, else solid-angle]
@@ -106,10 +106,16 @@ struct GuideParamArgs {
     #[arg(long, value_parser = ["on", "off"])]
     guided_mis: Option<String>,
     /// Side of the per-hemisphere table of each cached region's density that those guided
-    /// MIS weights read; 0 reads the exact density (slower, the same image in expectation)
+    /// MIS weights read when footprints are sampled from their caps (--raster 0); 0 reads
+    /// the exact density (slower, the same image in expectation)
     /// [default: guide.mis_table, else 16]
     #[arg(long)]
     mis_table: Option<usize>,
+    /// Side of the equal-area grid per hemisphere on which each cached region's footprint
+    /// mixture is rasterised for sampling (a cell search and a lookup instead of a walk over
+    /// the caps); 0 samples the caps, as the paper does [default: guide.raster, else 16]
+    #[arg(long)]
+    raster: Option<usize>,
 }
 
 impl GuideParamArgs {
@@ -149,6 +155,9 @@ impl GuideParamArgs {
         }
         if let Some(v) = self.mis_table {
             p.mis_table = v;
+        }
+        if let Some(v) = self.raster {
+            p.raster = v;
         }
         p.validate().map_err(|e| anyhow::anyhow!(e.as_flag_error()))
     }
@@ -884,10 +893,11 @@ fn compare_variants(
                 "region_seeds" => opts.guide_params.region_seeds = num as usize,
                 "min_depth" => opts.guide_params.min_depth = num as u16,
                 "mis_table" => opts.guide_params.mis_table = num as usize,
+                "raster" => opts.guide_params.raster = num as usize,
                 "importons" => maps.importons = num as usize,
                 "map_rounds" => maps.rounds = num as u32,
                 other => bail!(
-                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, k_g, grid, region_particles, region_seeds, min_depth, mis_table, photons, importons or map_rounds)"
+                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, k_g, grid, region_particles, region_seeds, min_depth, mis_table, raster, photons, importons or map_rounds)"
                 ),
             }
             out.push(make(
@@ -1136,7 +1146,7 @@ fn render_command(
         (
             "footprint/guide_params".to_string(),
             format!(
-                "k_p={} k_g={}x{} k_r={} p_bsdf={} radius_rule={} grid={}x{} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} mis_table={} photons={} importons={} max_dist={}",
+                "k_p={} k_g={}x{} k_r={} p_bsdf={} radius_rule={} grid={}x{} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} mis_table={} raster={} photons={} importons={} max_dist={}",
                 p.k_p,
                 p.k_g_side,
                 p.k_g_side,
@@ -1151,6 +1161,7 @@ fn render_command(
                 p.min_depth,
                 if p.guided_mis { "on" } else { "off" },
                 p.mis_table,
+                p.raster,
                 scene.maps.photons,
                 scene.maps.importons,
                 scene.map_max_dist()

@@ -41,7 +41,7 @@ pub fn settings_key(opts: &RenderOptions, scene: &Scene) -> String {
     let p = &opts.guide_params;
     let m = &scene.maps;
     format!(
-        "method={} resolution={}x{} max_depth={} k_p={} k_g={} k_r={} p_bsdf={} radius_rule={} grid={} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} mis_table={} photons={} importons={} max_dist={} soft_glossy_max={}",
+        "method={} resolution={}x{} max_depth={} k_p={} k_g={} k_r={} p_bsdf={} radius_rule={} grid={} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} mis_table={} raster={} photons={} importons={} max_dist={} soft_glossy_max={}",
         opts.method.name(),
         scene.camera.width,
         scene.camera.height,
@@ -58,6 +58,7 @@ pub fn settings_key(opts: &RenderOptions, scene: &Scene) -> String {
         p.min_depth,
         p.guided_mis,
         p.mis_table,
+        p.raster,
         m.photons,
         m.importons,
         scene.map_max_dist(),

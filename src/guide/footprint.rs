@@ -29,6 +29,7 @@
 //!   sums `sample` searches.
 
 use crate::Rgb;
+use crate::guide::grid::GridDistribution;
 use crate::guide::table::{DirectionTable, cap_points};
 use crate::guide::{ChannelMix, Guide, GuideDistribution, GuideParticle};
 use crate::math::{Frame, PI, safe_sqrt};
@@ -109,6 +110,20 @@ impl Cap {
     #[inline]
     pub fn contains(&self, w: Vec3) -> bool {
         (w - self.dir).length_squared() < 2.0 * self.one_minus_cos
+    }
+
+    /// `n` directions spread uniformly in solid angle over the cap, deterministically: a
+    /// spherical Fibonacci spiral (`1 - cos α` at the midpoints of `n` equal steps, the
+    /// azimuth turning by the golden angle), a quadrature of the cap's uniform density.
+    pub fn quadrature(&self, n: usize) -> impl Iterator<Item = Vec3> + '_ {
+        let (t1, t2) = self.dir.any_orthonormal_pair();
+        let golden = PI * (3.0 - 5.0f32.sqrt());
+        (0..n).map(move |k| {
+            let omc = self.one_minus_cos * (k as f32 + 0.5) / n as f32;
+            let sin_a = safe_sqrt(omc * (2.0 - omc));
+            let phi = golden * k as f32;
+            (self.dir * (1.0 - omc) + (t1 * phi.cos() + t2 * phi.sin()) * sin_a).normalize()
+        })
     }
 
     /// A direction uniform in solid angle in the cap (`1 - cos α` uniform in
@@ -251,6 +266,40 @@ impl FootprintDistribution {
             .map(|i| [out.prob(0, i), out.prob(1, i), out.prob(2, i)])
             .collect();
         out
+    }
+
+    /// The mixture rasterised for sampling (`raster`): each cap's mass per channel
+    /// (`c_p` of eq. 15, the channel totals kept) into the equal-area grid of `side` cells
+    /// per hemisphere's side around `frame.z` ([`GridDistribution`]): all of it into one
+    /// cell when the cap's centre and its four extreme points lie in that cell, else spread
+    /// over [`Cap::quadrature`] points, two per cell of the cap's size and at least 16.
+    /// Sampling and its pdf then cost a cell search and a lookup instead of a walk over the
+    /// caps; the density is the footprints' smoothed over cells of `2π / side²` steradians.
+    pub fn rasterise(&self, frame: &Frame, side: usize) -> GridDistribution {
+        let cell = 2.0 * PI / (side * side) as f32;
+        let totals = [self.totals.x, self.totals.y, self.totals.z];
+        let probe = GridDistribution::from_masses(frame, side, std::iter::empty());
+        let mut points: Vec<(Vec3, [f32; 3])> = Vec::with_capacity(self.caps.len() * 4);
+        for (i, cap) in self.caps.iter().enumerate() {
+            let mass = [0, 1, 2].map(|ch| self.prob(ch, i) * totals[ch]);
+            let (t1, t2) = cap.dir.any_orthonormal_pair();
+            let omc = cap.one_minus_cos;
+            let sin_a = safe_sqrt(omc * (2.0 - omc));
+            let home = probe.cell_of_world(cap.dir);
+            let inside = [t1, -t1, t2, -t2].iter().all(|t| {
+                let rim = (cap.dir * (1.0 - omc) + *t * sin_a).normalize();
+                probe.cell_of_world(rim) == home
+            });
+            if inside {
+                points.push((cap.dir, mass));
+                continue;
+            }
+            let omega = 2.0 * PI * omc;
+            let n = ((2.0 * omega / cell).ceil() as usize).clamp(16, 512);
+            let m = mass.map(|x| x / n as f32);
+            points.extend(cap.quadrature(n).map(|w| (w, m)));
+        }
+        GridDistribution::from_masses(frame, side, points)
     }
 
     /// Probability with which `sample` chooses cap `i` under the channel mixture `mix`.
@@ -412,6 +461,12 @@ impl Guide for FootprintGuide {
         params: &GuideParams,
     ) -> Option<Box<dyn GuideDistribution>> {
         let d = FootprintDistribution::build(frame, particles, params);
-        (!d.caps.is_empty()).then(|| Box::new(d) as Box<dyn GuideDistribution>)
+        if d.caps.is_empty() {
+            None
+        } else if params.raster > 0 {
+            Some(Box::new(d.rasterise(frame, params.raster)))
+        } else {
+            Some(Box::new(d))
+        }
     }
 }

@@ -57,6 +57,22 @@ impl GridDistribution {
     /// Accumulates the particles' weights per channel into the cells of the grid around
     /// `frame.z`.
     pub fn build(frame: &Frame, particles: &[GuideParticle], side: usize) -> Self {
+        Self::from_masses(
+            frame,
+            side,
+            particles
+                .iter()
+                .map(|p| (p.dir, [p.weight.x, p.weight.y, p.weight.z])),
+        )
+    }
+
+    /// The grid of the per-channel masses `points` (world direction, mass) accumulated into
+    /// the cells their directions fall in; the channel totals are the masses' sums.
+    pub fn from_masses(
+        frame: &Frame,
+        side: usize,
+        points: impl IntoIterator<Item = (Vec3, [f32; 3])>,
+    ) -> Self {
         let mut g = GridDistribution {
             frame: *frame,
             side,
@@ -66,11 +82,11 @@ impl GridDistribution {
         let cells = 2 * side * side;
         let mut acc = vec![[0.0f64; 3]; cells];
         let mut totals = [0.0f64; 3];
-        for p in particles {
-            let cell = g.cell_of(frame.to_local(p.dir));
+        for (dir, m) in points {
+            let cell = g.cell_of(frame.to_local(dir));
             for ch in 0..3 {
-                acc[cell][ch] += p.weight[ch] as f64;
-                totals[ch] += p.weight[ch] as f64;
+                acc[cell][ch] += m[ch] as f64;
+                totals[ch] += m[ch] as f64;
             }
         }
         for ch in 0..3 {
@@ -91,6 +107,17 @@ impl GridDistribution {
         }
         g.totals = Rgb::new(totals[0] as f32, totals[1] as f32, totals[2] as f32);
         g
+    }
+
+    /// The cell of a world direction (hemisphere `+z` first).
+    #[inline]
+    pub fn cell_of_world(&self, w: Vec3) -> usize {
+        self.cell_of(self.frame.to_local(w))
+    }
+
+    /// Cells per side of each hemisphere's grid.
+    pub fn side(&self) -> usize {
+        self.side
     }
 
     /// Solid angle of one cell.
