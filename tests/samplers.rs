@@ -16,7 +16,7 @@ use common::chi2::ChiSquareTest;
 use common::sidak;
 use footprint::Rgb;
 use footprint::bsdf::{Bsdf, Lobes, TransportMode};
-use footprint::guide::footprint::{FootprintDistribution, FootprintGuide, cap_solid_angle};
+use footprint::guide::footprint::{Cap, FootprintDistribution, FootprintGuide, cap_solid_angle};
 use footprint::guide::grid::GridDistribution;
 use footprint::guide::particle_map::{MapKind, ParticleMap};
 use footprint::guide::sampler::{GuideSource, GuidedSampler, SamplerState, ScatterPoint};
@@ -259,6 +259,23 @@ fn params(rule: RadiusRule) -> GuideParams {
     }
 }
 
+/// `n x n` directions uniform in solid angle over a cap, by the midpoint rule in the cap's
+/// own coordinates (`1 - cos α` and azimuth), in f64 before the final rounding: each stands
+/// for `1 / n²` of the cap.
+fn cap_grid(cap: &Cap, n: usize) -> impl Iterator<Item = Vec3> + '_ {
+    let (t1, t2) = cap.dir.any_orthonormal_pair();
+    (0..n).flat_map(move |a| {
+        let omc = (a as f64 + 0.5) / n as f64 * cap.one_minus_cos as f64;
+        let sin = (omc * (2.0 - omc)).max(0.0).sqrt();
+        (0..n).map(move |b| {
+            let phi = (b as f64 + 0.5) / n as f64 * std::f64::consts::TAU;
+            (cap.dir.as_dvec3() * (1.0 - omc)
+                + (t1.as_dvec3() * phi.cos() + t2.as_dvec3() * phi.sin()) * sin)
+                .as_vec3()
+        })
+    })
+}
+
 /// Cell masses of the footprint mixture: BSDF part by the midpoint rule, caps exactly (in
 /// each cap's own coordinates).
 fn footprint_masses(
@@ -275,19 +292,10 @@ fn footprint_masses(
         if prob == 0.0 {
             continue;
         }
-        let (t1, t2) = cap.dir.any_orthonormal_pair();
         let w = (1.0 - p_bsdf) as f64 * prob as f64 / (n * n) as f64;
-        for a in 0..n {
-            let omc = (a as f64 + 0.5) / n as f64 * cap.one_minus_cos as f64;
-            let cos = 1.0 - omc;
-            let sin = (omc * (2.0 - omc)).max(0.0).sqrt();
-            for b in 0..n {
-                let phi = (b as f64 + 0.5) / n as f64 * std::f64::consts::TAU;
-                let world = cap.dir.as_dvec3() * cos
-                    + (t1.as_dvec3() * phi.cos() + t2.as_dvec3() * phi.sin()) * sin;
-                if let Some(c) = test.cell_of(world.as_vec3()) {
-                    m[c] += w;
-                }
+        for world in cap_grid(cap, n) {
+            if let Some(c) = test.cell_of(world) {
+                m[c] += w;
             }
         }
     }
@@ -609,21 +617,12 @@ fn footprint_pdf_integrates_to_one() {
             let n = 300;
             let mut integral = 0.0f64;
             for cap in caps {
-                let (t1, t2) = cap.dir.any_orthonormal_pair();
                 let omega = 2.0 * std::f64::consts::PI * cap.one_minus_cos as f64;
-                for a in 0..n {
-                    let omc = (a as f64 + 0.5) / n as f64 * cap.one_minus_cos as f64;
-                    let sin = (omc * (2.0 - omc)).max(0.0).sqrt();
-                    for b in 0..n {
-                        let phi = (b as f64 + 0.5) / n as f64 * std::f64::consts::TAU;
-                        let d = (cap.dir.as_dvec3() * (1.0 - omc)
-                            + (t1.as_dvec3() * phi.cos() + t2.as_dvec3() * phi.sin()) * sin)
-                            .as_vec3();
-                        let cover = caps.iter().filter(|k| k.contains(d)).count();
-                        if cover > 0 {
-                            integral +=
-                                dist.pdf(&mix, d) as f64 * omega / (n * n) as f64 / cover as f64;
-                        }
+                for d in cap_grid(cap, n) {
+                    let cover = caps.iter().filter(|k| k.contains(d)).count();
+                    if cover > 0 {
+                        integral +=
+                            dist.pdf(&mix, d) as f64 * omega / (n * n) as f64 / cover as f64;
                     }
                 }
             }
@@ -689,17 +688,8 @@ fn rasterised_footprints_keep_the_footprint_density() {
             let n = 100;
             for (i, cap) in dist.caps.iter().enumerate() {
                 let prob = dist.probability(&mix, i) as f64;
-                let (t1, t2) = cap.dir.any_orthonormal_pair();
-                for a in 0..n {
-                    let omc = (a as f64 + 0.5) / n as f64 * cap.one_minus_cos as f64;
-                    let sin = (omc * (2.0 - omc)).max(0.0).sqrt();
-                    for b in 0..n {
-                        let phi = (b as f64 + 0.5) / n as f64 * std::f64::consts::TAU;
-                        let w = (cap.dir.as_dvec3() * (1.0 - omc)
-                            + (t1.as_dvec3() * phi.cos() + t2.as_dvec3() * phi.sin()) * sin)
-                            .as_vec3();
-                        exact[bin_of(&frame, w)] += prob / (n * n) as f64;
-                    }
+                for w in cap_grid(cap, n) {
+                    exact[bin_of(&frame, w)] += prob / (n * n) as f64;
                 }
             }
             // The raster's cells are uniform: its mass in a cell is pdf x solid angle.

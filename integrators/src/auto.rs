@@ -19,16 +19,20 @@
 //! * **Guided candidates** (`--guide auto`) are piloted only when their maps are predicted to
 //!   take at most [`GUIDED_MAPS_SHARE`] of the budget (the passes' paths at the pilot's time
 //!   per path); their maps are then built once, piloted with the same passes, and reused by
-//!   the render if one of them wins.
+//!   the render if one of them wins. With one map round the particle passes do not depend on
+//!   the guide: they run once and every guide builds its maps and caches from them.
 //! * **Budget.** With `--time T` the pilot takes about [`PILOT_SHARE`] of `T` (at least
 //!   [`MIN_BATCHES`] passes) and counts in the budget: the render stops at `T`, pilot
 //!   included. With `--spp N` the pilot's [`MIN_BATCHES`] passes are extra, the candidates
 //!   are compared at the time `N` passes of path tracing take, and the chosen method renders
 //!   `N` passes.
 
-use crate::maps::Guidance;
+use crate::maps::{Guidance, Passes, run_passes};
 use crate::method::Method;
-use crate::render::{RenderOptions, RenderResult, StopRule, guidance, render_prepared};
+use crate::render::{
+    RenderOptions, RenderResult, StopRule, guidance, pass_settings, render_prepared,
+};
+use crate::skips::particles_stored;
 use footprint::Rgb;
 use footprint::film::Image;
 use footprint::math::luminance;
@@ -466,6 +470,11 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     let guided_start = Instant::now();
     // What one guide's maps and pilot took (the estimate for the next guide).
     let mut last_guided: Option<f64> = None;
+    // With one map round the particle passes do not depend on the guide: they run once and
+    // every guide builds its maps and caches from them (`passes_s`: what they took).
+    let share = scene.maps.rounds <= 1 && !(opts.specialise && !particles_stored(scene));
+    let mut shared: Option<Passes> = None;
+    let mut passes_s = 0.0f64;
     for g in footprint::guide::GUIDES
         .iter()
         .filter(|g| g.uses_particles())
@@ -481,11 +490,15 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         // again, and the guided pilot passes as much as both (measured on cornell, door and
         // desk: 3-5x the passes' paths alone).
         let npix = scene.camera.pixel_count() as f64;
-        let maps_est = last_guided.unwrap_or(
-            4.0 * (scene.maps.photons as f64 * t_lt / npix
-                + scene.maps.importons as f64 * t_pt / npix)
-                + budget.map_or(0.0, |t| PILOT_SHARE * t),
-        );
+        let maps_est = match last_guided {
+            // The next guide reuses the passes.
+            Some(t) => (t - passes_s).max(0.0),
+            None => {
+                4.0 * (scene.maps.photons as f64 * t_lt / npix
+                    + scene.maps.importons as f64 * t_pt / npix)
+                    + budget.map_or(0.0, |t| PILOT_SHARE * t)
+            }
+        };
         let spent = guided_start.elapsed().as_secs_f64();
         let allowed = GUIDED_MAPS_SHARE * horizon(0.0);
         if spent + maps_est > allowed && !only_guided {
@@ -503,7 +516,17 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             auto: None,
             ..opts.clone()
         };
-        let gd = guidance(scene, &o, &|| None);
+        let gd = if share {
+            let passes = shared.get_or_insert_with(|| {
+                let t = Instant::now();
+                let p = run_passes(scene, &both, &o.guide_params, &pass_settings(scene, &o));
+                passes_s = t.elapsed().as_secs_f64();
+                p
+            });
+            Guidance::from_passes(scene, &both, &o.guide_params, passes.clone(), &|| None)
+        } else {
+            guidance(scene, &o, &|| None)
+        };
         let until = budget.map(|t| Instant::now() + Duration::from_secs_f64(PILOT_SHARE * t));
         let p = pilot_passes(scene, opts, both, &gd, until, 2);
         last_guided = Some(g0.elapsed().as_secs_f64());

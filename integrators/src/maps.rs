@@ -94,7 +94,7 @@ pub struct Guidance {
 
 /// What the passes of one render produced (the particles, the other pass's seeds, the
 /// flux accounting), before any map is built: what `Guidance::from_passes` needs.
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub struct Passes {
     pub light: Option<PassOutput>,
     pub view: Option<PassOutput>,

@@ -85,6 +85,7 @@ pub struct PassStats {
     pub time: Duration,
 }
 
+#[derive(Clone)]
 pub struct PassOutput {
     pub particles: Vec<ParticleInput>,
     /// Points where paths left area lights (light pass only).

@@ -255,15 +255,25 @@ pub fn render(scene: &Scene, opts: &RenderOptions, on_progress: impl FnMut(f64))
 /// The maps and guide caches `opts.method` needs (none for BSDF sampling); `heap` reports
 /// the heap bytes in use (a counting allocator) so that the summaries state each map's size.
 pub fn guidance(scene: &Scene, opts: &RenderOptions, heap: &dyn Fn() -> Option<usize>) -> Guidance {
-    let pass = PassSettings {
+    Guidance::build(
+        scene,
+        &opts.method,
+        &opts.guide_params,
+        &pass_settings(scene, opts),
+        heap,
+    )
+}
+
+/// The particle passes' settings of a render with `opts`.
+pub fn pass_settings(scene: &Scene, opts: &RenderOptions) -> PassSettings {
+    PassSettings {
         paths: 0,
         max_depth: opts.max_depth,
         rr_depth: opts.rr_depth,
         seed: opts.seed,
         soft_glossy_max: scene.maps.soft_glossy_max,
         specialise: opts.specialise,
-    };
-    Guidance::build(scene, &opts.method, &opts.guide_params, &pass, heap)
+    }
 }
 
 /// [`render`], with `heap` reporting the heap bytes in use (a counting allocator) so that
