@@ -165,16 +165,21 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
             soft_glossy_max: door.maps.soft_glossy_max,
             specialise: true,
         };
-        for (method, cache) in [
-            ("lt-bsdf", false),
-            ("lt-grid", false),
-            ("lt-footprint", false),
-            ("lt-grid", true),
-            ("lt-footprint", true),
+        // (method, cache, raster): footprints cached are measured sampled from their caps
+        // (raster 0) and rasterised (the scene's `raster`).
+        let raster = door.guide.raster;
+        for (method, cache, raster) in [
+            ("lt-bsdf", false, raster),
+            ("lt-grid", false, raster),
+            ("lt-footprint", false, raster),
+            ("lt-grid", true, raster),
+            ("lt-footprint", true, 0),
+            ("lt-footprint", true, raster),
         ] {
             let method = Method::parse(method).map_err(anyhow::Error::msg)?;
             let params = footprint::settings::GuideParams {
                 cache,
+                raster,
                 ..door.guide.clone()
             };
             let g = Guidance::build(&door, &method, &params, &pass, &|| None);
@@ -201,11 +206,15 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
                 "{:>9} guide, {}: prepare {:.0} ns, sample + pdf {:.0} ns per scattering event (single thread; {} of {} events at guiding surfaces guided)",
                 method.guide.name(),
                 if !method.guided() {
-                    "no map"
-                } else if cache {
-                    "cached (region lookup)"
+                    "no map".to_string()
+                } else if !cache {
+                    "per event (query and build)".to_string()
+                } else if method.guide.name() == "footprint" && raster == 0 {
+                    "cached (region lookup), sampled from the caps".to_string()
+                } else if method.guide.name() == "footprint" {
+                    format!("cached (region lookup), rasterised {raster}x{raster}")
                 } else {
-                    "per event (query and build)"
+                    "cached (region lookup)".to_string()
                 },
                 t_prep / n * 1e9,
                 t_sp / n * 1e9,

@@ -251,7 +251,13 @@ impl<'a> GuidedSampler<'a> {
         if state.particles.is_empty() {
             return None;
         }
-        guide.build(&Frame::from_z(n), &state.particles, &self.params)
+        // The paper's method samples the caps themselves: rasterising (`raster`) pays off
+        // only when a distribution serves a whole region.
+        let params = GuideParams {
+            raster: 0,
+            ..self.params.clone()
+        };
+        guide.build(&Frame::from_z(n), &state.particles, &params)
     }
 
     /// Draws a direction; `None` when no direction could be drawn (the BSDF's own sampling
