@@ -435,10 +435,6 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     );
     let t_pt = t_pt1.min(pass_seconds(scene, opts, find("pt", "bsdf"), &unguided, 2));
     let t_lt = t_lt1.min(pass_seconds(scene, opts, find("lt", "bsdf"), &unguided, 2));
-    // The combined pass's camera (light) half costs more than pt's (lt's) pass by the MIS
-    // bookkeeping: the same ratio is assumed for the guided passes.
-    let cam_ratio = (t_pt / pilot.camera_s.max(1e-9)).min(1.0);
-    let light_ratio = (t_lt / pilot.light_s.max(1e-9)).min(1.0);
     let reference = pilot.layers[0].clone();
     if reference.sum.iter().all(|p| p.iter().all(|x| *x <= 0.0)) {
         return Choice {
@@ -529,12 +525,12 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         };
         let until = budget.map(|t| Instant::now() + Duration::from_secs_f64(PILOT_SHARE * t));
         let p = pilot_passes(scene, opts, both, &gd, until, 2);
+        // The guided pt and lt passes timed themselves (two each, the faster), as the
+        // unguided ones are: the guided combined pass's halves also carry its MIS densities.
+        let t_pt_g = pass_seconds(scene, opts, find("pt", gname), &gd, 2);
+        let t_lt_g = pass_seconds(scene, opts, find("lt", gname), &gd, 2);
         last_guided = Some(g0.elapsed().as_secs_f64());
-        let secs = [
-            p.camera_s + p.light_s,
-            p.camera_s * cam_ratio,
-            p.light_s * light_ratio,
-        ];
+        let secs = [p.camera_s + p.light_s, t_pt_g, t_lt_g];
         all.extend(measure(scene, &p, &reference, false, secs, gname));
         built.push((gname.to_string(), gd));
     }
