@@ -7,8 +7,10 @@
 //!
 //! * **Prediction.** For candidate `m` with per-pass variance `σ²_m` per pixel and channel, a
 //!   pass time `t_m` and the time left `T`: `E_m = mean[(σ²_m t_m / T + b²_m) / (R² + 0.01)]`,
-//!   `R` the pilot's combined mean, everything divided by `R`'s mean luminance as `compare`
-//!   does.
+//!   `R` the pilot's combined mean over each pixel's 3x3 neighbourhood (a pixel's own pilot
+//!   mean is heavy-tailed and usually low where rare bright paths carry the light, which
+//!   overweights the pixels guiding helps), everything divided by `R`'s mean luminance as
+//!   `compare` does.
 //! * **Missing light.** A method that cannot make some paths is biased there: path tracing
 //!   misses caustics of point and spot lights (`L S+ D ... E`: a delta light behind a specular
 //!   surface), light tracing misses what the pinhole sees through a specular surface and the
@@ -18,7 +20,8 @@
 //!   point-light caustic seen only by the light tracer rules path tracing out.
 //! * **Guided candidates** (`--guide auto`) are piloted only when their maps are predicted to
 //!   take at most [`GUIDED_MAPS_SHARE`] of the budget (the passes' paths at the pilot's time
-//!   per path); their maps are then built once, piloted with the same passes, and reused by
+//!   per path); the guides share one pilot's time ([`PILOT_SHARE`] / the number of guides
+//!   each); their maps are then built once, piloted with the same passes, and reused by
 //!   the render if one of them wins. With one map round the particle passes do not depend on
 //!   the guide: they run once and every guide builds its maps and caches from them.
 //! * **Budget.** With `--time T` the pilot takes about [`PILOT_SHARE`] of `T` (at least
@@ -327,6 +330,28 @@ fn measure(
     // light a method misses (a point-light caustic measured pixel by pixel from 4 passes read
     // 0.12 where the block estimate reads the whole caustic).
     let side = ((BIAS_BLOCK_SAMPLES / k_ref).sqrt().ceil() as usize).max(1);
+    // The metric's weight 1 / (R^2 + 0.01) read from the reference's 3x3 neighbourhood mean:
+    // a pixel's own pilot mean is heavy-tailed (usually below its expectation where rare
+    // bright paths carry the light), which overweights exactly the pixels guiding helps.
+    let weight: Vec<[f64; 3]> = (0..npix)
+        .map(|i| {
+            let (x, y) = (i % width, i / width);
+            let mut acc = [0.0f64; 3];
+            let mut n = 0.0;
+            for yy in y.saturating_sub(1)..(y + 2).min(height) {
+                for xx in x.saturating_sub(1)..(x + 2).min(width) {
+                    n += 1.0;
+                    for (c, a) in acc.iter_mut().enumerate() {
+                        *a += reference.mean(yy * width + xx, c);
+                    }
+                }
+            }
+            acc.map(|a| {
+                let r = a / n / scale;
+                1.0 / (r * r + 0.01)
+            })
+        })
+        .collect();
     ["combined", "pt", "lt"]
         .iter()
         .enumerate()
@@ -335,8 +360,7 @@ fn measure(
             let mut var = 0.0f64;
             for i in 0..npix {
                 for c in 0..3 {
-                    let r = reference.mean(i, c) / scale;
-                    var += layer.var(i, c) / (scale * scale) / (r * r + 0.01);
+                    var += layer.var(i, c) / (scale * scale) * weight[i][c];
                 }
             }
             let mut bias = 0.0f64;
@@ -471,17 +495,20 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     let share = scene.maps.rounds <= 1 && !(opts.specialise && !particles_stored(scene));
     let mut shared: Option<Passes> = None;
     let mut passes_s = 0.0f64;
-    for g in footprint::guide::GUIDES
+    let guided: Vec<&str> = footprint::guide::GUIDES
         .iter()
         .filter(|g| g.uses_particles())
-    {
-        let gname = g.name();
-        if !["pt", "lt", "combined"]
-            .iter()
-            .any(|i| wanted(&format!("{i}-{gname}")))
-        {
-            continue;
-        }
+        .map(|g| g.name())
+        .filter(|gname| {
+            ["pt", "lt", "combined"]
+                .iter()
+                .any(|i| wanted(&format!("{i}-{gname}")))
+        })
+        .collect();
+    // The guided pilots share one pilot's time: each guide's passes get PILOT_SHARE / n of
+    // the budget, so that every guide fits where one did.
+    let guided_pilot = PILOT_SHARE / guided.len().max(1) as f64;
+    for gname in guided {
         // A particle path costs about a pass's path; the map and cache builds about as much
         // again, and the guided pilot passes as much as both (measured on cornell, door and
         // desk: 3-5x the passes' paths alone).
@@ -492,7 +519,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             None => {
                 4.0 * (scene.maps.photons as f64 * t_lt / npix
                     + scene.maps.importons as f64 * t_pt / npix)
-                    + budget.map_or(0.0, |t| PILOT_SHARE * t)
+                    + budget.map_or(0.0, |t| guided_pilot * t)
             }
         };
         let spent = guided_start.elapsed().as_secs_f64();
@@ -523,7 +550,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         } else {
             guidance(scene, &o, &|| None)
         };
-        let until = budget.map(|t| Instant::now() + Duration::from_secs_f64(PILOT_SHARE * t));
+        let until = budget.map(|t| Instant::now() + Duration::from_secs_f64(guided_pilot * t));
         let p = pilot_passes(scene, opts, both, &gd, until, 2);
         // The guided pt and lt passes timed themselves (two each, the faster), as the
         // unguided ones are: the guided combined pass's halves also carry its MIS densities.
