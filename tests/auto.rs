@@ -71,10 +71,7 @@ fn auto_picks_light_tracing_for_a_point_light_caustic_through_glass() {
     // Compared at the time of 256 path-tracing passes: at a few milliseconds (32 passes of
     // this 40x40 image) light tracing's own noise is as large as the whole missing caustic,
     // and the choice would turn on the machine's pass-time ratio.
-    let o = RenderOptions {
-        spp: 256,
-        ..opts()
-    };
+    let o = RenderOptions { spp: 256, ..opts() };
     let c = choose(&scene, &o, &spec);
     eprintln!("{}: {}", c.method.name(), c.reason);
     assert_eq!(c.method.name(), "lt-bsdf", "{}", c.reason);
