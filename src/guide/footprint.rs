@@ -30,7 +30,7 @@
 
 use crate::Rgb;
 use crate::guide::grid::GridDistribution;
-use crate::guide::table::{DirectionTable, cap_points};
+use crate::guide::table::DirectionTable;
 use crate::guide::{ChannelMix, Guide, GuideDistribution, GuideParticle};
 use crate::math::{Frame, PI, safe_sqrt};
 use crate::rng::Rng;
@@ -278,17 +278,17 @@ impl FootprintDistribution {
     pub fn rasterise(&self, frame: &Frame, side: usize) -> GridDistribution {
         let cell = 2.0 * PI / (side * side) as f32;
         let totals = [self.totals.x, self.totals.y, self.totals.z];
-        let probe = GridDistribution::from_masses(frame, side, std::iter::empty());
         let mut points: Vec<(Vec3, [f32; 3])> = Vec::with_capacity(self.caps.len() * 4);
         for (i, cap) in self.caps.iter().enumerate() {
             let mass = [0, 1, 2].map(|ch| self.prob(ch, i) * totals[ch]);
             let (t1, t2) = cap.dir.any_orthonormal_pair();
             let omc = cap.one_minus_cos;
             let sin_a = safe_sqrt(omc * (2.0 - omc));
-            let home = probe.cell_of_world(cap.dir);
+            let cell_of = |w: Vec3| GridDistribution::cell_in(side, frame.to_local(w));
+            let home = cell_of(cap.dir);
             let inside = [t1, -t1, t2, -t2].iter().all(|t| {
                 let rim = (cap.dir * (1.0 - omc) + *t * sin_a).normalize();
-                probe.cell_of_world(rim) == home
+                cell_of(rim) == home
             });
             if inside {
                 points.push((cap.dir, mass));
@@ -415,12 +415,12 @@ impl GuideDistribution for FootprintDistribution {
         p
     }
 
-    /// Each cap's per-channel probability on its seven quadrature points
-    /// ([`cap_points`]).
+    /// Each cap's per-channel probability on seven of its quadrature points
+    /// ([`Cap::quadrature`]).
     fn tabulate(&self, frame: &Frame, side: usize) -> Option<DirectionTable> {
         let points = self.caps.iter().zip(&self.probs).flat_map(|(cap, p)| {
             let m = p.map(|x| x / 7.0);
-            cap_points(cap.dir, cap.one_minus_cos).map(|w| (w, m))
+            cap.quadrature(7).map(move |w| (w, m))
         });
         Some(DirectionTable::from_masses(
             *frame,

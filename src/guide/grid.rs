@@ -46,7 +46,14 @@ impl GridDistribution {
 
     #[inline]
     fn cell_of(&self, d: Vec3) -> usize {
-        let s = self.side;
+        Self::cell_in(self.side, d)
+    }
+
+    /// The cell of the local direction `d` on grids of `side` cells per hemisphere's side
+    /// (hemisphere `+z` first).
+    #[inline]
+    pub fn cell_in(side: usize, d: Vec3) -> usize {
+        let s = side;
         let uv = Self::square_of(d);
         let i = ((uv.x * s as f32) as usize).min(s - 1);
         let j = ((uv.y * s as f32) as usize).min(s - 1);
@@ -107,12 +114,6 @@ impl GridDistribution {
         }
         g.totals = Rgb::new(totals[0] as f32, totals[1] as f32, totals[2] as f32);
         g
-    }
-
-    /// The cell of a world direction (hemisphere `+z` first).
-    #[inline]
-    pub fn cell_of_world(&self, w: Vec3) -> usize {
-        self.cell_of(self.frame.to_local(w))
     }
 
     /// Cells per side of each hemisphere's grid.

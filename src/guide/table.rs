@@ -15,14 +15,14 @@
 //! `[-1, 1]²`, cells' solid angles integrated by [`cell_solid_angles`]). Per channel a cell
 //! holds the probability mass the distribution puts in it divided by its solid angle, so
 //! every channel's table integrates to one like the density it stands for. A footprint
-//! distribution puts each cap's probability on seven points of the cap (its centre and six
-//! on the circle that halves the cap's solid angle): a quadrature of the cap, exact in
-//! total mass and in which hemisphere it lies (caps never cross their horizon, eq. 8-9).
+//! distribution puts each cap's probability on seven points of the cap
+//! (`Cap::quadrature`): a quadrature of the cap, exact in total mass and in which
+//! hemisphere it lies (caps never cross their horizon, eq. 8-9).
 
 use crate::Rgb;
 use crate::guide::ChannelMix;
 use crate::guide::footprint::cell_solid_angles_cached;
-use crate::math::{Frame, PI};
+use crate::math::Frame;
 use glam::Vec3;
 
 /// Per-channel densities on each hemisphere's tangent-plane grid of a region's frame.
@@ -111,25 +111,11 @@ fn cell_of(local: Vec3, side: usize) -> (usize, bool) {
     (j * side + i, local.z < 0.0)
 }
 
-/// The seven quadrature points of a cap around `dir` (unit) with `1 - cos α = one_minus_cos`:
-/// its centre and six points on the circle at `1 - cos = one_minus_cos / 2`, which splits the
-/// cap's solid angle in halves. Each carries a seventh of the cap's mass.
-pub fn cap_points(dir: Vec3, one_minus_cos: f32) -> [Vec3; 7] {
-    let (t1, t2) = dir.any_orthonormal_pair();
-    let omc = 0.5 * one_minus_cos;
-    let cos_a = 1.0 - omc;
-    let sin_a = (omc * (2.0 - omc)).max(0.0).sqrt();
-    let mut out = [dir; 7];
-    for (k, p) in out.iter_mut().skip(1).enumerate() {
-        let phi = 2.0 * PI * k as f32 / 6.0;
-        *p = (dir * cos_a + (t1 * phi.cos() + t2 * phi.sin()) * sin_a).normalize();
-    }
-    out
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::guide::footprint::Cap;
+    use crate::math::PI;
 
     /// A uniform density over the upper hemisphere (mass spread evenly over many points)
     /// reads about 1 / 2π everywhere above the horizon and 0 below it.
@@ -167,13 +153,21 @@ mod tests {
         assert_eq!(t.pdf(&mix, frame.to_world(Vec3::new(0.1, 0.1, -0.99))), 0.0);
     }
 
+    /// The quadrature that places a cap's mass in the table keeps it inside the cap.
     #[test]
-    fn cap_points_lie_in_their_cap() {
+    fn cap_quadrature_points_lie_in_their_cap() {
         let dir = Vec3::new(0.2, 0.5, -0.8).normalize();
         for omc in [1e-4f32, 0.01, 0.3, 1.0] {
-            for p in cap_points(dir, omc) {
-                assert!((p.length() - 1.0).abs() < 1e-5);
-                assert!(1.0 - p.dot(dir) <= omc * 1.0001 + 1e-6, "{omc}");
+            let cap = Cap {
+                dir,
+                one_minus_cos: omc,
+                inv_solid_angle: 1.0 / (2.0 * PI * omc),
+            };
+            for n in [7, 16, 100] {
+                for p in cap.quadrature(n) {
+                    assert!((p.length() - 1.0).abs() < 1e-5);
+                    assert!(1.0 - p.dot(dir) <= omc * 1.0001 + 1e-6, "{omc} {n}");
+                }
             }
         }
     }
