@@ -293,6 +293,27 @@ def mitsuba_reference(mi, name, xml, defines, out, seconds):
     return ref
 
 
+def load_with_sampler(mi, xml, defines, sampler):
+    """The scene, with its `<sampler type=...>` replaced by `sampler` when one is given (the
+    edited XML goes to a temporary folder; the scene's own folder stays on the file resolver's
+    path, so its meshes and textures are found)."""
+    import re
+    import tempfile
+    params = {k: str(v) for k, v in defines.items()}
+    if not sampler:
+        return mi.load_file(xml, **params)
+    text = open(xml).read()
+    edited, n = re.subn(r'<sampler\s+type="[^"]*"', f'<sampler type="{sampler}"', text)
+    if n != 1:
+        sys.exit(f"{xml}: expected one <sampler type=...>, found {n}")
+    mi.Thread.thread().file_resolver().append(os.path.dirname(os.path.abspath(xml)))
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "scene.xml")
+        with open(path, "w") as f:
+            f.write(edited)
+        return mi.load_file(path, **params)
+
+
 def cmd_compare(args):
     """Equal time against Mitsuba 3 `path`: both renderers get the same wall-clock budget for
     rendering (footprint's includes its map passes; neither includes loading the scene), on
@@ -311,7 +332,7 @@ def cmd_compare(args):
             continue
         print(f"{name}", flush=True)
         ref = mitsuba_reference(mi, name, xml, defines, out, args.reference_time)
-        scene = mi.load_file(xml, **{k: str(v) for k, v in defines.items()})
+        scene = load_with_sampler(mi, xml, defines, args.mitsuba_sampler)
         # Mitsuba renders a sample count, not a time: its count comes from two timings (4 and
         # 20 spp), so that the cost every render call has whatever its samples does not count
         # as samples (a 4-spp timing alone left Mitsuba 15% short of the budget at 64x64).
@@ -333,9 +354,10 @@ def cmd_compare(args):
             theirs.append(rel_mse(img, ref))
             their_spp.append(spp)
             exr = os.path.join(out, "footprint.exr")
+            seq = ["--sequence", args.sequence] if args.sequence else []
             run = subprocess.run([FOOTPRINT, "render", xml, *dflags, "--integrator", args.integrator,
                                   "--guide", args.guide, "--time", str(args.time), "--seed", str(100 + s),
-                                  "-o", exr], check=True, capture_output=True, text=True)
+                                  *seq, "-o", exr], check=True, capture_output=True, text=True)
             our_spp.append(int(run.stdout.split(" spp ")[0].split()[-1]))
             ours.append(rel_mse(np.array(mi.Bitmap(exr))[..., :3], ref))
             their_secs.append(their_s)
@@ -343,7 +365,8 @@ def cmd_compare(args):
                   f" in {their_s:.1f} s)", flush=True)
         rows.append((name, float(np.median(ours)), int(np.median(our_spp)), float(np.median(theirs)),
                      int(np.median(their_spp)), float(np.median(their_secs))))
-    print(f"\nequal time {args.time:g} s per render, {args.seeds} seeds, footprint {args.integrator}-{args.guide}; medians")
+    print(f"\nequal time {args.time:g} s per render, {args.seeds} seeds, footprint {args.integrator}-{args.guide}"
+          f" ({args.sequence or 'default'} numbers), Mitsuba sampler {args.mitsuba_sampler or 'as the XML says'}; medians")
     print(f"| scene | footprint rel. MSE (spp) | Mitsuba 3 `path` rel. MSE (spp, seconds) | ratio |")
     print(f"|---|---|---|---|")
     for name, o, os_, t, ts, tsec in rows:
@@ -377,6 +400,8 @@ def main():
     q.add_argument("--integrator", default="pt")
     q.add_argument("--guide", default="bsdf")
     q.add_argument("--reference-time", type=float, default=600.0, help="seconds of a Mitsuba reference")
+    q.add_argument("--sequence", choices=["sobol", "independent"], help="footprint's --sequence [default: its default]")
+    q.add_argument("--mitsuba-sampler", help="replace the XML's sampler type for Mitsuba (e.g. multijitter, ldsampler)")
     q.add_argument("-o", "--out")
     args = ap.parse_args()
     sys.exit({"references": cmd_references, "check": cmd_check, "bench": cmd_bench,

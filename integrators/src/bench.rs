@@ -4,7 +4,7 @@
 //! all threads.
 
 use anyhow::Result;
-use footprint::rng::Rng;
+use footprint::rng::{Rng, Sequence};
 use footprint::sampling::sample_uniform_sphere;
 use footprint::scene::Scene;
 use footprint::scene::geometry::spawn_origin;
@@ -283,19 +283,29 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
         }
     }
 
-    // ---- Path samples on cornell ----
+    // ---- Path samples on cornell, with each number sequence ----
     let mut opts = RenderOptions::from_scene(&cornell).map_err(anyhow::Error::msg)?;
     opts.method = Method::default();
     opts.time = Some(seconds);
-    let r = render(&cornell, &opts, |_| {});
+    let mut rate = Vec::new();
+    for sequence in [Sequence::Independent, Sequence::Sobol] {
+        opts.sequence = sequence;
+        let r = render(&cornell, &opts, |_| {});
+        rate.push(r.paths as f64 / r.elapsed.as_secs_f64());
+        println!(
+            "cornell: {:.3} M path samples/s (pt, {} numbers, max_depth {}, {}x{}, {} spp in {:.2} s)",
+            rate[rate.len() - 1] / 1e6,
+            sequence.name(),
+            opts.max_depth,
+            cornell.camera.width,
+            cornell.camera.height,
+            r.passes,
+            r.elapsed.as_secs_f64()
+        );
+    }
     println!(
-        "cornell: {:.3} M path samples/s (pt, max_depth {}, {}x{}, {} spp in {:.2} s)",
-        r.paths as f64 / r.elapsed.as_secs_f64() / 1e6,
-        opts.max_depth,
-        cornell.camera.width,
-        cornell.camera.height,
-        r.passes,
-        r.elapsed.as_secs_f64()
+        "cornell: Sobol / independent path samples per second {:.3}",
+        rate[1] / rate[0]
     );
     Ok(())
 }

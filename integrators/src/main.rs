@@ -211,6 +211,11 @@ enum Command {
         /// (Mitsuba, pbrt-v3) or filter importance sampling (pbrt-v4; uncorrelated pixels)
         #[arg(long, value_enum, default_value_t = footprint::film::FilmMode::Splat)]
         film: footprint::film::FilmMode,
+        /// The numbers camera and light paths draw (pbrt's and Mitsuba's sampler): one point
+        /// of a pixel's own Owen-scrambled Sobol sequence per pass (pbrt-v4's default kind),
+        /// or independent numbers (Mitsuba's `independent`). Both converge to the same image
+        #[arg(long, value_enum, default_value_t = footprint::rng::Sequence::Sobol)]
+        sequence: footprint::rng::Sequence,
         /// Render only shard i of N (zero-based): the passes k < spp with k mod N = i, so that
         /// N shards with the same --spp (the total) and seed, put together by `footprint
         /// merge`, are the image of one run. Needs --spp, not --time
@@ -311,8 +316,9 @@ enum Command {
         /// [default: pt and lt with each guide, and combined-footprint]
         #[arg(long, value_delimiter = ',')]
         methods: Option<Vec<String>>,
-        /// Parameter sweep NAME=V1,V2,... over k_p, k_r, p_bsdf, k_g, grid, photons, importons:
-        /// every method is run once per value [default methods for a sweep: pt-footprint,lt-footprint]
+        /// Parameter sweep NAME=V1,V2,... over k_p, k_r, p_bsdf, k_g, grid, region_particles,
+        /// region_seeds, min_depth, mis_table, raster, photons, importons, map_rounds or
+        /// sequence (sobol, independent): every method is run once per value [default methods for a sweep: pt-footprint,lt-footprint]
         #[arg(long)]
         sweep: Option<String>,
         /// Output folder [default: compare-<scene name>]
@@ -539,6 +545,7 @@ fn run(cli: Cli) -> Result<()> {
             general_loop,
             guide,
             film,
+            sequence,
             params,
             maps,
             import,
@@ -573,6 +580,7 @@ fn run(cli: Cli) -> Result<()> {
             }
             params.apply(&mut opts.guide_params)?;
             opts.film = film;
+            opts.sequence = sequence;
             opts.specialise = !general_loop;
             if let Some(s) = spp {
                 opts.spp = s;
@@ -876,13 +884,24 @@ fn compare_variants(
     let mut out = Vec::new();
     for v in values.split(',') {
         let v = v.trim();
-        let num: f64 = v
-            .parse()
-            .map_err(|_| anyhow::anyhow!("--sweep: '{v}' is not a number"))?;
+        let num: f64 = if name.trim() == "sequence" {
+            0.0
+        } else {
+            v.parse()
+                .map_err(|_| anyhow::anyhow!("--sweep: '{v}' is not a number"))?
+        };
         for m in methods {
             let mut opts = base.clone();
             let mut maps = scene.maps.clone();
             match name.trim() {
+                "sequence" => {
+                    opts.sequence = <footprint::rng::Sequence as clap::ValueEnum>::from_str(v, true)
+                        .map_err(|_| {
+                            anyhow::anyhow!(
+                                "--sweep: sequence '{v}' (expected sobol or independent)"
+                            )
+                        })?
+                }
                 "k_p" => opts.guide_params.k_p = num as usize,
                 "k_r" => opts.guide_params.k_r = num as f32,
                 "p_bsdf" => opts.guide_params.p_bsdf = num as f32,
@@ -897,7 +916,7 @@ fn compare_variants(
                 "importons" => maps.importons = num as usize,
                 "map_rounds" => maps.rounds = num as u32,
                 other => bail!(
-                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, k_g, grid, region_particles, region_seeds, min_depth, mis_table, raster, photons, importons or map_rounds)"
+                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, k_g, grid, region_particles, region_seeds, min_depth, mis_table, raster, photons, importons, map_rounds or sequence)"
                 ),
             }
             out.push(make(
@@ -1142,6 +1161,10 @@ fn render_command(
         (
             "footprint/film".to_string(),
             format!("{:?} {:?}", opts.film, scene.camera.filter.kind),
+        ),
+        (
+            "footprint/sequence".to_string(),
+            opts.sequence.name().to_string(),
         ),
         (
             "footprint/guide_params".to_string(),

@@ -41,8 +41,10 @@ pub fn settings_key(opts: &RenderOptions, scene: &Scene) -> String {
     let p = &opts.guide_params;
     let m = &scene.maps;
     format!(
-        "method={} resolution={}x{} max_depth={} k_p={} k_g={} k_r={} p_bsdf={} radius_rule={} grid={} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} mis_table={} raster={} photons={} importons={} max_dist={} soft_glossy_max={}",
+        "method={} sequence={} film={:?} resolution={}x{} max_depth={} k_p={} k_g={} k_r={} p_bsdf={} radius_rule={} grid={} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} mis_table={} raster={} photons={} importons={} max_dist={} soft_glossy_max={}",
         opts.method.name(),
+        opts.sequence.name(),
+        opts.film,
         scene.camera.width,
         scene.camera.height,
         opts.max_depth,

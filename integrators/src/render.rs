@@ -19,7 +19,7 @@ use footprint::Rgb;
 use footprint::film::filter::FilterKind;
 use footprint::film::{Film, FilmMode, Image, SampleStats, SplatList};
 use footprint::guide::sampler::SamplerState;
-use footprint::rng::Rng;
+use footprint::rng::{Rng, Sequence};
 use footprint::scene::Scene;
 use footprint::scene::features::Specialisation;
 use footprint::settings::GuideParams;
@@ -32,6 +32,8 @@ pub struct RenderOptions {
     pub method: Method,
     /// How camera samples reach the film.
     pub film: FilmMode,
+    /// The numbers camera and light paths draw (`footprint::rng`).
+    pub sequence: Sequence,
     pub guide_params: GuideParams,
     /// Samples per pixel (camera paths) and light paths per pixel per pass.
     pub spp: u32,
@@ -58,6 +60,7 @@ impl Default for RenderOptions {
         RenderOptions {
             method: Method::default(),
             film: FilmMode::Splat,
+            sequence: Sequence::default(),
             guide_params: GuideParams::default(),
             spp: 16,
             time: None,
@@ -91,6 +94,7 @@ impl RenderOptions {
             method,
             auto,
             film: FilmMode::Splat,
+            sequence: Sequence::default(),
             guide_params: scene.guide.clone(),
             spp: s.spp,
             time: s.time,
@@ -410,8 +414,15 @@ fn trace(
                         vec![SplatList::default(); if splat { layers.len() } else { 0 }];
                     for (x, out) in row.chunks_exact_mut(layers.len()).enumerate() {
                         let x = x as u32;
-                        let index = k * npix as u64 + (y as u64 * cam.width as u64 + x as u64);
-                        let mut rng = Rng::new(opts.seed, DOMAIN_CAMERA, index);
+                        let pixel = y as u64 * cam.width as u64 + x as u64;
+                        let mut rng = Rng::for_pass(
+                            opts.sequence,
+                            opts.seed,
+                            DOMAIN_CAMERA,
+                            pixel,
+                            npix as u64,
+                            k,
+                        );
                         let u = rng.uniform2();
                         let raster = if splat {
                             glam::Vec2::new(x as f32, y as f32) + u
@@ -457,8 +468,14 @@ fn trace(
                     let mut state = SamplerState::default();
                     let mut splats = vec![SplatList::default(); layers.len()];
                     for i in c * LT_CHUNK..((c + 1) * LT_CHUNK).min(npix) {
-                        let index = k * npix as u64 + i as u64;
-                        let mut rng = Rng::new(opts.seed, DOMAIN_LIGHT, index);
+                        let mut rng = Rng::for_pass(
+                            opts.sequence,
+                            opts.seed,
+                            DOMAIN_LIGHT,
+                            i as u64,
+                            npix as u64,
+                            k,
+                        );
                         integrator.light_path(&ctx, &mut rng, &mut state, &mut splats);
                     }
                     (splats, GuideCounts::of(&state))

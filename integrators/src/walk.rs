@@ -182,6 +182,7 @@ pub fn walk<'a, V: Visitor>(
             throughput: beta,
         };
         sampler.prepare(&at, state);
+        rng.start_vertex(depth);
         visitor.before_scatter(&v, &at, sampler, state, rng);
         let Some(s) = sampler.sample_with::<V::F>(&at, state, rng) else {
             return;
