@@ -306,7 +306,7 @@ def load_with_sampler(mi, xml, defines, sampler):
     edited, n = re.subn(r'<sampler\s+type="[^"]*"', f'<sampler type="{sampler}"', text)
     if n != 1:
         sys.exit(f"{xml}: expected one <sampler type=...>, found {n}")
-    mi.Thread.thread().file_resolver().append(os.path.dirname(os.path.abspath(xml)))
+    mi.file_resolver().append(os.path.dirname(os.path.abspath(xml)))
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "scene.xml")
         with open(path, "w") as f:
