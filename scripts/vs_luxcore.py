@@ -690,8 +690,12 @@ def mean_ratio(a, b):
     sa = ma.std(axis=0, ddof=1) / math.sqrt(len(ma))
     sb = mb.std(axis=0, ddof=1) / math.sqrt(len(mb))
     ratio = ra / np.maximum(rb, 1e-30)
-    se = ratio * np.sqrt((sa / np.maximum(ra, 1e-30)) ** 2 + (sb / np.maximum(rb, 1e-30)) ** 2)
-    return ra, rb, ratio, se
+    va, vb = (sa / np.maximum(ra, 1e-30)) ** 2, (sb / np.maximum(rb, 1e-30)) ** 2
+    se = ratio * np.sqrt(va + vb)
+    # Welch-Satterthwaite degrees of freedom of that standard error (it is estimated from a
+    # few batch means: Student's t, not the normal, says how far the ratio may stray).
+    dof = (va + vb) ** 2 / np.maximum(va ** 2 / (len(ma) - 1) + vb ** 2 / (len(mb) - 1), 1e-300)
+    return ra, rb, ratio, se, dof
 
 
 def cmd_convert(args):
@@ -710,8 +714,9 @@ def cmd_convert(args):
 
 def cmd_check(args):
     """Both renderers on each scene: K independent batches each; the image means must agree
-    within --tolerance (2%) per channel, or within 4 standard errors of the ratio when the
-    batches are noisier, or the conversion's notes must say why not."""
+    within --tolerance (2%) per channel, or within Student's t (Welch, 0.001 per scene) times
+    the ratio's standard error when the batches are noisier, or the conversion's notes must
+    say why not."""
     import numpy as np
 
     if args.no_install and not luxcore_available():
@@ -735,12 +740,16 @@ def cmd_check(args):
         ls = LuxScene(path, defines, quiet=True)
         a, ta = vm.footprint_batches(path, defines, args.batches, spp, ["--integrator", args.integrator])
         b, tb = lux_batches(ls, args.method, args.batches, spp, args.rr_depth)
-        ra, rb, ratio, se = mean_ratio(a, b)
+        ra, rb, ratio, se, dof = mean_ratio(a, b)
         t = vm.compare(a, b, args.block)
-        # Within --tolerance, or within 4 standard errors of the ratio where the batches are
-        # noisier than that (door at 4 x 128 spp: 1.2% per channel); 4 sigma over 3 channels
-        # and two scenes leaves a false alarm about once in 2500 checks.
-        bound = np.maximum(args.tolerance, 4.0 * se)
+        # Within --tolerance, or within Student's t critical value (Welch degrees of freedom;
+        # a false alarm once in 1000 checks of a scene, Šidák over its 3 channels) times the
+        # standard error of the ratio where the batches are noisier than that (door at
+        # 8 x 128 spp: about 1% per channel). A fixed "4 standard errors" with a standard error
+        # from 4 batches failed a correct render about once in 30 channels.
+        alpha = 1 - (1 - 0.001) ** (1 / 3)
+        crit = np.array([vm.t_quantile(1 - alpha / 2, max(float(d), 1.0)) for d in dof])
+        bound = np.maximum(args.tolerance, crit * se)
         ok = bool(np.all(np.abs(ratio - 1) <= bound))
         failed += not ok
         print(f"{'PASS' if ok else 'FAIL'} {s}: {args.batches} x {spp} spp, -D {defines}, LuxCore {args.method}")

@@ -30,9 +30,9 @@ fn luxcore_agrees_on_the_bundled_scenes() {
             "check",
             "--no-install",
             "--batches",
-            "4",
+            "8",
             "--spp",
-            "128",
+            "256",
             "scenes/cornell/mitsuba/scene.xml",
             "scenes/door/mitsuba/scene.xml",
         ])
