@@ -233,17 +233,22 @@ mod tests {
         assert_eq!(dim(&rng), 4, "a pair starts at an even dimension");
         rng.start_vertex(1);
         assert_eq!(dim(&rng), START_DIMENSIONS);
+        for _ in 0..5 {
+            rng.uniform();
+        }
+        // Asked again for a vertex it has passed, the stream does not go back.
+        rng.start_vertex(1);
+        assert_eq!(
+            dim(&rng),
+            START_DIMENSIONS + 5,
+            "a vertex never re-reads dimensions"
+        );
         for _ in 0..40 {
             let u = rng.uniform();
             assert!((0.0..1.0).contains(&u));
         }
-        let after = dim(&rng);
-        rng.start_vertex(2);
-        assert_eq!(
-            dim(&rng),
-            after,
-            "vertex 2 starts after vertex 1's overflow"
-        );
+        // Past the Sobol dimensions the draws are independent and the counter stops there.
+        assert_eq!(dim(&rng), SOBOL_DIMENSIONS);
         rng.start_vertex(5);
         assert_eq!(dim(&rng), START_DIMENSIONS + 4 * VERTEX_DIMENSIONS);
         // Past the sequence's points the stream is the independent one of that pass.
