@@ -259,11 +259,8 @@ fn colour_or_texture(
                 .clone();
             let mut img = image::RgbImage::new(*width, *height);
             for (i, p) in img.pixels_mut().enumerate() {
-                let c = texels[i];
-                let e = |v: f32| {
-                    (crate::film::image_io::linear_to_srgb(v).clamp(0.0, 1.0) * 255.0).round() as u8
-                };
-                *p = image::Rgb([e(c.x), e(c.y), e(c.z)]);
+                let [r, g, b, _] = texels[i];
+                *p = image::Rgb([r, g, b]);
             }
             let path = out.join(&file);
             img.save(&path).map_err(|e| Error::Write {
