@@ -220,8 +220,12 @@ pub struct GuideParams {
     pub k_g_side: usize,
     /// `k_r`: footprint radius scale.
     pub k_r: f32,
-    /// Probability of sampling the BSDF where guiding.
+    /// Probability of sampling the BSDF where guiding (with `learn_p_bsdf`: where a region
+    /// has not learned its own yet).
     pub p_bsdf: f32,
+    /// Path tracing learns the probability of sampling the BSDF per region of the guide
+    /// cache from its own earlier passes (`src/guide/selection.rs`).
+    pub learn_p_bsdf: bool,
     pub radius_rule: RadiusRule,
     /// Side of the classic sampler's grid per hemisphere (Jensen 1995).
     #[serde(rename = "grid")]
@@ -263,6 +267,7 @@ impl Default for GuideParams {
             k_g_side: 32,
             k_r: 6.0,
             p_bsdf: 0.5,
+            learn_p_bsdf: false,
             radius_rule: RadiusRule::SolidAngle,
             grid_side: 8,
             cache: true,

@@ -54,6 +54,24 @@ fn per_event() -> GuideParams {
     }
 }
 
+/// The default parameters with `p_BSDF` learned per region.
+fn learning() -> GuideParams {
+    GuideParams {
+        learn_p_bsdf: true,
+        ..Default::default()
+    }
+}
+
+/// Regions whose `p_BSDF` a render learned, from its run summary.
+fn learned_regions(r: &footprint_integrators::RenderResult) -> usize {
+    r.maps
+        .iter()
+        .find_map(|m| m.split("p_BSDF learned in ").nth(1))
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .expect("the run reports the learned regions")
+}
+
 #[allow(clippy::too_many_arguments)]
 fn agreement(
     scene: &Scene,
@@ -156,6 +174,39 @@ fn guided_passes_agree_with_the_reference() {
     agreement(&door, 2, 20, 4, 8, &guided, &GuideParams::default());
 }
 
+/// The probability of sampling the BSDF learned per region (`learn_p_bsdf`) changes only
+/// between passes, so the guided images stay unbiased: pt and combined with learning agree
+/// with unguided path tracing on cornell. 64 passes per replicate, so that regions gather the
+/// records learning waits for (checked: the run reports learned regions).
+#[test]
+fn learned_selection_agrees_with_the_reference_on_cornell() {
+    let scene = small("cornell", 32, 32, 20_000);
+    let params = learning();
+    let probe = render(
+        &scene,
+        &RenderOptions {
+            guide_params: params.clone(),
+            ..opts("pt-footprint", 64, 6, 1)
+        },
+        |_| {},
+    );
+    let learned = learned_regions(&probe);
+    eprintln!("learned regions at 64 spp: {learned}");
+    assert!(
+        learned > 0,
+        "nothing was learned: the test would not test it"
+    );
+    agreement(
+        &scene,
+        2,
+        12,
+        64,
+        6,
+        &["pt-footprint", "combined-footprint"],
+        &params,
+    );
+}
+
 /// The paper's per-event preparation (no guide cache) stays correct.
 #[test]
 fn per_event_guiding_agrees_with_the_reference_on_cornell() {
@@ -194,14 +245,16 @@ fn every_pair_finds_radiance_one_in_the_furnace() {
 #[test]
 fn guided_images_do_not_depend_on_the_thread_count() {
     let scene = small("cornell", 20, 16, 10_000);
-    for (m, params) in [
-        ("combined-footprint", GuideParams::default()),
-        ("combined-grid", GuideParams::default()),
-        ("combined-footprint", per_event()),
+    // Learning needs passes before it acts (the learned case is checked to have learned).
+    for (m, params, spp) in [
+        ("combined-footprint", GuideParams::default(), 2),
+        ("combined-grid", GuideParams::default(), 2),
+        ("combined-footprint", per_event(), 2),
+        ("pt-footprint", learning(), 48),
     ] {
         let o = RenderOptions {
             guide_params: params,
-            ..opts(m, 2, 6, 9)
+            ..opts(m, spp, 6, 9)
         };
         let run = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new()
@@ -211,6 +264,9 @@ fn guided_images_do_not_depend_on_the_thread_count() {
             pool.install(|| render(&scene, &o, |_| {}))
         };
         let (a, b) = (run(1), run(3));
+        if o.guide_params.learn_p_bsdf {
+            assert!(learned_regions(&a) > 0, "{m}: nothing learned");
+        }
         for ((na, ia), (_, ib)) in a.layers.iter().zip(&b.layers) {
             assert!(
                 ia.pixels == ib.pixels,

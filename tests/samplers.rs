@@ -79,6 +79,7 @@ fn fixed<'a>(dist: &'a dyn GuideDistribution, params: &GuideParams) -> GuidedSam
         source: GuideSource::Fixed(dist),
         params: params.clone(),
         soft_glossy_max: 1e9,
+        selection: None,
     }
 }
 
@@ -775,6 +776,7 @@ fn too_few_particles_fall_back_to_the_bsdf() {
             ..GuideParams::default()
         },
         soft_glossy_max: 100.0,
+        selection: None,
     };
     for k_p in [10usize, 50] {
         let fp = per_event(k_p);
@@ -920,6 +922,7 @@ fn cached_regions_pass_chi_square_with_coloured_throughput() {
     use footprint::guide::cache::{GuideCache, Seed};
     use footprint::guide::grid::GridGuide;
     use footprint::guide::particle_map::ParticleInput;
+    use footprint::guide::selection::{MIN_RECORDS, SelectionLearner, SelectionRecord};
     let mut rng = Rng::new(5, 5, 5);
     let mut particles = Vec::new();
     for i in 0..4000 {
@@ -966,11 +969,16 @@ fn cached_regions_pass_chi_square_with_coloured_throughput() {
         Vec3::Z,
     );
     // Footprints rasterised for sampling (the default), footprints sampled from their caps,
-    // and the grid.
-    let guides: [(&dyn Guide, usize); 3] =
-        [(&FootprintGuide, 16), (&FootprintGuide, 0), (&GridGuide, 0)];
+    // and the grid; the default once more with the region's BSDF probability learned
+    // (src/guide/selection.rs) down to 0.1, which sample and pdf must both use.
+    let guides: [(&dyn Guide, usize, bool); 4] = [
+        (&FootprintGuide, 16, false),
+        (&FootprintGuide, 0, false),
+        (&GridGuide, 0, false),
+        (&FootprintGuide, 16, true),
+    ];
     let alpha = sidak(0.01, guides.len());
-    for (guide, raster) in guides {
+    for (guide, raster, learned) in guides {
         let params = GuideParams {
             region_particles: 1000,
             raster,
@@ -980,10 +988,30 @@ fn cached_regions_pass_chi_square_with_coloured_throughput() {
         let x = Vec3::new(0.1, 0.1, 0.0);
         let region = cache.lookup(x, Vec3::Z).expect("a region holds the point");
         let dist = region.distribution.as_deref().expect("the region guides");
+        let learner = SelectionLearner::new(cache.regions().len(), params.p_bsdf);
+        let i = cache.lookup_index(x, Vec3::Z).unwrap();
+        // Returns only where the guide is dense and the BSDF is not: the least BSDF share.
+        let records: Vec<SelectionRecord> = (0..MIN_RECORDS)
+            .map(|_| SelectionRecord {
+                region: i,
+                x2: 1.0,
+                pdf_bsdf_w: 0.01,
+                pdf_guide_w: 1.0,
+                pdf_w: 0.505,
+            })
+            .collect();
+        learner.absorb(&records);
+        assert_eq!(learner.p_bsdf(i), 0.1);
         let sampler = GuidedSampler {
             source: GuideSource::Cached(&cache),
             params: params.clone(),
             soft_glossy_max: 100.0,
+            selection: learned.then_some(&learner),
+        };
+        // The masses of the mixture with the probability the sampler uses.
+        let params = GuideParams {
+            p_bsdf: if learned { 0.1 } else { params.p_bsdf },
+            ..params.clone()
         };
         let at = ScatterPoint {
             p: x,
@@ -1026,8 +1054,9 @@ fn cached_regions_pass_chi_square_with_coloured_throughput() {
             &masses,
         );
         eprintln!(
-            "cached {} (raster {raster}, {} particles): chi2 {:.0} dof {} p {:.3e}, channel mixture {:?}",
+            "cached {} (raster {raster}, p_bsdf {}, {} particles): chi2 {:.0} dof {} p {:.3e}, channel mixture {:?}",
             guide.name(),
+            params.p_bsdf,
             region.particles,
             r.chi2,
             r.dof,

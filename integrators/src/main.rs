@@ -105,6 +105,11 @@ struct GuideParamArgs {
     /// unguided ones (off) [default: guide.guided_mis, else on]
     #[arg(long, value_parser = ["on", "off"])]
     guided_mis: Option<String>,
+    /// Path tracing learns the probability of sampling the BSDF per region of the guide
+    /// cache from its earlier passes (on) or keeps --p-bsdf everywhere (off)
+    /// [default: guide.learn_p_bsdf, else off]
+    #[arg(long, value_parser = ["on", "off"])]
+    learn_p_bsdf: Option<String>,
     /// Side of the per-hemisphere table of each cached region's density that those guided
     /// MIS weights read when footprints are sampled from their caps (--raster 0); 0 reads
     /// the exact density (slower, the same image in expectation)
@@ -152,6 +157,9 @@ impl GuideParamArgs {
         }
         if let Some(v) = &self.guided_mis {
             p.guided_mis = v == "on";
+        }
+        if let Some(v) = &self.learn_p_bsdf {
+            p.learn_p_bsdf = v == "on";
         }
         if let Some(v) = self.mis_table {
             p.mis_table = v;
@@ -316,7 +324,7 @@ enum Command {
         /// [default: pt and lt with each guide, and combined-footprint]
         #[arg(long, value_delimiter = ',')]
         methods: Option<Vec<String>>,
-        /// Parameter sweep NAME=V1,V2,... over k_p, k_r, p_bsdf, k_g, grid, region_particles,
+        /// Parameter sweep NAME=V1,V2,... over k_p, k_r, p_bsdf, learn_p_bsdf (0, 1), k_g, grid, region_particles,
         /// region_seeds, min_depth, mis_table, raster, photons, importons, map_rounds or
         /// sequence (sobol, independent): every method is run once per value [default methods for a sweep: pt-footprint,lt-footprint]
         #[arg(long)]
@@ -905,6 +913,7 @@ fn compare_variants(
                 "k_p" => opts.guide_params.k_p = num as usize,
                 "k_r" => opts.guide_params.k_r = num as f32,
                 "p_bsdf" => opts.guide_params.p_bsdf = num as f32,
+                "learn_p_bsdf" => opts.guide_params.learn_p_bsdf = num != 0.0,
                 "k_g" => opts.guide_params.k_g_side = num as usize,
                 "grid" => opts.guide_params.grid_side = num as usize,
                 "photons" => maps.photons = num as usize,
@@ -916,7 +925,7 @@ fn compare_variants(
                 "importons" => maps.importons = num as usize,
                 "map_rounds" => maps.rounds = num as u32,
                 other => bail!(
-                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, k_g, grid, region_particles, region_seeds, min_depth, mis_table, raster, photons, importons, map_rounds or sequence)"
+                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, learn_p_bsdf (0 or 1), k_g, grid, region_particles, region_seeds, min_depth, mis_table, raster, photons, importons, map_rounds or sequence)"
                 ),
             }
             out.push(make(
@@ -1169,12 +1178,13 @@ fn render_command(
         (
             "footprint/guide_params".to_string(),
             format!(
-                "k_p={} k_g={}x{} k_r={} p_bsdf={} radius_rule={} grid={}x{} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} mis_table={} raster={} photons={} importons={} max_dist={}",
+                "k_p={} k_g={}x{} k_r={} p_bsdf={} learn_p_bsdf={} radius_rule={} grid={}x{} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} mis_table={} raster={} photons={} importons={} max_dist={}",
                 p.k_p,
                 p.k_g_side,
                 p.k_g_side,
                 p.k_r,
                 p.p_bsdf,
+                if p.learn_p_bsdf { "on" } else { "off" },
                 p.radius_rule.name(),
                 p.grid_side,
                 p.grid_side,

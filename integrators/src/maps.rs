@@ -370,5 +370,6 @@ fn sampler<'a>(
         source,
         params: params.clone(),
         soft_glossy_max: scene.maps.soft_glossy_max,
+        selection: None,
     }
 }

@@ -18,7 +18,8 @@ use crate::shard::PassSelection;
 use footprint::Rgb;
 use footprint::film::filter::FilterKind;
 use footprint::film::{Film, FilmMode, Image, SampleStats, SplatList};
-use footprint::guide::sampler::SamplerState;
+use footprint::guide::sampler::{GuideSource, SamplerState};
+use footprint::guide::selection::{SelectionLearner, SelectionRecord};
 use footprint::rng::{Rng, Sequence};
 use footprint::scene::Scene;
 use footprint::scene::features::Specialisation;
@@ -368,11 +369,21 @@ fn trace(
     let paths = integrator.paths();
     let layers = integrator.layers();
     let elapsed_since = |start: Instant| (charged + start.elapsed()).as_secs_f64();
+    let mut camera_sampler = guidance.camera_sampler(scene, &opts.method, &opts.guide_params);
+    // The probability of sampling the BSDF, learned per region of the photon map's cache
+    // from the camera paths of earlier passes (footprint::guide::selection).
+    let learner = match &camera_sampler.source {
+        GuideSource::Cached(cache) if opts.guide_params.learn_p_bsdf => Some(
+            SelectionLearner::new(cache.regions().len(), opts.guide_params.p_bsdf),
+        ),
+        _ => None,
+    };
+    camera_sampler.selection = learner.as_ref();
     let ctx = Context {
         scene,
         max_depth: opts.max_depth,
         rr_depth: opts.rr_depth,
-        camera_sampler: guidance.camera_sampler(scene, &opts.method, &opts.guide_params),
+        camera_sampler,
         light_sampler: guidance.light_sampler(scene, &opts.method, &opts.guide_params),
         guided_mis: opts.guide_params.guided_mis,
         specialisation: opts.specialisation(scene),
@@ -405,7 +416,8 @@ fn trace(
             // Splatting and filter importance sampling coincide for the box filter; the
             // box keeps the cheaper per-pixel accumulation.
             let splat = opts.film != FilmMode::Fis && cam.filter.kind != FilterKind::Box;
-            let rows: Vec<(Vec<Rgb>, Vec<SplatList>, GuideCounts)> = (0..cam.height)
+            type Row = (Vec<Rgb>, Vec<SplatList>, GuideCounts, Vec<SelectionRecord>);
+            let rows: Vec<Row> = (0..cam.height)
                 .into_par_iter()
                 .map_init(SamplerState::default, |state, y| {
                     let before = GuideCounts::of(state);
@@ -440,7 +452,12 @@ fn trace(
                         }
                     }
                     let counts = GuideCounts::of(state).minus(&before);
-                    (row, splats, counts)
+                    (
+                        row,
+                        splats,
+                        counts,
+                        std::mem::take(&mut state.selection_records),
+                    )
                 })
                 .collect();
             for (l, film) in films.iter_mut().enumerate() {
@@ -456,6 +473,12 @@ fn trace(
             }
             for r in &rows {
                 camera_guide.add(&r.2);
+            }
+            if let Some(l) = &learner {
+                // Rows in order: the learned values do not depend on the thread count.
+                let records: Vec<SelectionRecord> =
+                    rows.iter().flat_map(|r| r.3.iter().copied()).collect();
+                l.absorb(&records);
             }
         }
         camera_time += camera_start.elapsed();
@@ -549,7 +572,15 @@ fn trace(
         stats,
         camera_guide,
         light_guide,
-        maps: guidance.summaries.clone(),
+        maps: {
+            let mut m = guidance.summaries.clone();
+            m.extend(
+                learner
+                    .as_ref()
+                    .map(|l| format!("camera paths: {}", l.summary())),
+            );
+            m
+        },
         skipped,
         method: opts.method,
         auto: None,

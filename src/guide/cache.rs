@@ -167,6 +167,12 @@ impl GuideCache {
     /// pass landed there.
     #[inline]
     pub fn lookup(&self, x: Vec3, n: Vec3) -> Option<&Region> {
+        self.lookup_index(x, n).map(|i| &self.regions[i as usize])
+    }
+
+    /// The index in [`GuideCache::regions`] of the region [`GuideCache::lookup`] finds.
+    #[inline]
+    pub fn lookup_index(&self, x: Vec3, n: Vec3) -> Option<u32> {
         let mut i = 0usize;
         loop {
             match *self.nodes.get(i)? {
@@ -179,7 +185,7 @@ impl GuideCache {
                 }
                 Node::Leaf { regions } => {
                     let r = regions[normal_bucket(n)];
-                    return (r != NONE).then(|| &self.regions[r as usize]);
+                    return (r != NONE).then_some(r);
                 }
             }
         }

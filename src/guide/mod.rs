@@ -18,6 +18,8 @@
 //! * [`sampler`]: what the integrators call at a scattering point: `prepare`, `sample`,
 //!   `pdf`, mixing the guide with BSDF sampling (`p_BSDF`) and falling back to the BSDF
 //!   where particles cannot guide.
+//! * [`selection`]: the probability `p_BSDF` of sampling the BSDF, learned per cached
+//!   region from the render's own paths.
 //! * [`table`]: a cached region's density tabulated for the combined image's MIS weights.
 //!
 //! Adding a guide: write `src/guide/NAME.rs` with a unit struct implementing [`Guide`] and
@@ -30,6 +32,7 @@ pub mod footprint;
 pub mod grid;
 pub mod particle_map;
 pub mod sampler;
+pub mod selection;
 pub mod table;
 
 use crate::Rgb;

@@ -21,6 +21,7 @@ use crate::Rgb;
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::guide::cache::{GuideCache, Region};
 use crate::guide::particle_map::{Neighbor, ParticleMap};
+use crate::guide::selection::SelectionLearner;
 use crate::guide::{ChannelMix, Guide, GuideDistribution, GuideParticle, guides_at};
 use crate::math::{Frame, is_valid_rgb, luminance};
 use crate::rng::Rng;
@@ -86,6 +87,18 @@ pub struct DirectionSample {
     /// matter (and so lowers their weight there) does not get them cut more often.
     pub rr_weight: Rgb,
     pub delta: bool,
+    /// Drawn from a cached region's mixture: what the learned selection probability needs.
+    pub guided: Option<GuidedDraw>,
+}
+
+/// How a guided direction was drawn (for [`SelectionLearner`]).
+#[derive(Clone, Copy, Debug)]
+pub struct GuidedDraw {
+    /// The guide cache's region.
+    pub region: u32,
+    /// Densities per steradian of the direction under the BSDF and under the guide.
+    pub pdf_bsdf_w: f32,
+    pub pdf_guide_w: f32,
 }
 
 /// Where the guided distributions come from.
@@ -119,6 +132,10 @@ enum Prepared<'a> {
 pub struct SamplerState<'a> {
     prepared: Prepared<'a>,
     mix: Option<ChannelMix>,
+    /// The cached region of the current vertex, and the probability of sampling the BSDF
+    /// there (both set by `prepare`).
+    region: Option<u32>,
+    p_bsdf: f32,
     neighbors: Vec<Neighbor>,
     particles: Vec<GuideParticle>,
     /// Scattering events prepared at guiding surfaces.
@@ -129,6 +146,9 @@ pub struct SamplerState<'a> {
     /// state (what the run summary's skip counters are made of).
     pub vertices: u64,
     pub escapes: u64,
+    /// What finished camera paths teach the learned selection probabilities, in the order
+    /// the paths were traced (the path loop's owner hands them to the learner).
+    pub selection_records: Vec<crate::guide::selection::SelectionRecord>,
 }
 
 impl SamplerState<'_> {
@@ -151,6 +171,8 @@ pub struct GuidedSampler<'a> {
     pub source: GuideSource<'a>,
     pub params: GuideParams,
     pub soft_glossy_max: f32,
+    /// `p_BSDF` learned per cached region (else `params.p_bsdf` everywhere).
+    pub selection: Option<&'a SelectionLearner>,
 }
 
 impl<'a> GuidedSampler<'a> {
@@ -160,6 +182,16 @@ impl<'a> GuidedSampler<'a> {
             source: GuideSource::Bsdf,
             params: GuideParams::default(),
             soft_glossy_max: 0.0,
+            selection: None,
+        }
+    }
+
+    /// The probability of sampling the BSDF in cached region `region`.
+    #[inline]
+    fn p_bsdf_in(&self, region: u32) -> f32 {
+        match self.selection {
+            Some(l) => l.p_bsdf(region),
+            None => self.params.p_bsdf,
         }
     }
 
@@ -167,6 +199,8 @@ impl<'a> GuidedSampler<'a> {
     pub fn prepare(&self, at: &ScatterPoint, state: &mut SamplerState<'a>) {
         state.prepared = Prepared::Bsdf;
         state.mix = None;
+        state.region = None;
+        state.p_bsdf = self.params.p_bsdf;
         if matches!(self.source, GuideSource::Bsdf)
             || !guides_at(&at.bsdf.lobes, self.soft_glossy_max)
         {
@@ -176,13 +210,15 @@ impl<'a> GuidedSampler<'a> {
         match &self.source {
             GuideSource::Bsdf => {}
             GuideSource::Cached(cache) => {
-                if let Some(dist) = cache
-                    .lookup(at.p, at.side_normal())
-                    .and_then(|r| r.distribution.as_deref())
+                if let Some((i, dist)) = cache
+                    .lookup_index(at.p, at.side_normal())
+                    .and_then(|i| Some((i, cache.regions()[i as usize].distribution.as_deref()?)))
                 {
                     state.mix = ChannelMix::new(at.channel_factor(), dist.channel_totals());
                     if state.mix.is_some() {
                         state.prepared = Prepared::Cached(dist);
+                        state.region = Some(i);
+                        state.p_bsdf = self.p_bsdf_in(i);
                     }
                 }
             }
@@ -293,9 +329,11 @@ impl<'a> GuidedSampler<'a> {
                 weight: s.weight,
                 rr_weight: s.weight,
                 delta: s.delta,
+                guided: None,
             });
         };
-        let wi = if rng.uniform() < self.params.p_bsdf {
+        let p = state.p_bsdf;
+        let wi = if rng.uniform() < p {
             at.bsdf
                 .sample_with::<F>(at.wo, rng.uniform(), rng.uniform2(), at.mode)?
                 .wi
@@ -303,8 +341,8 @@ impl<'a> GuidedSampler<'a> {
             dist.sample(&mix, rng)?
         };
         let bsdf_pdf = at.bsdf.pdf_with::<F>(at.wo, wi);
-        let p = self.params.p_bsdf;
-        let pdf_w = p * bsdf_pdf + (1.0 - p) * dist.pdf(&mix, wi);
+        let guide_pdf = dist.pdf(&mix, wi);
+        let pdf_w = p * bsdf_pdf + (1.0 - p) * guide_pdf;
         if !(pdf_w > 0.0 && pdf_w.is_finite()) {
             return None;
         }
@@ -324,6 +362,11 @@ impl<'a> GuidedSampler<'a> {
                 weight
             },
             delta: false,
+            guided: state.region.map(|region| GuidedDraw {
+                region,
+                pdf_bsdf_w: bsdf_pdf,
+                pdf_guide_w: guide_pdf,
+            }),
         })
     }
 
@@ -331,11 +374,12 @@ impl<'a> GuidedSampler<'a> {
     fn mixture_pdf<F: Features>(
         &self,
         at: &ScatterPoint,
+        state: &SamplerState,
         dist: &dyn GuideDistribution,
         mix: &ChannelMix,
         wi: Vec3,
     ) -> f32 {
-        let p = self.params.p_bsdf;
+        let p = state.p_bsdf;
         p * at.bsdf.pdf_with::<F>(at.wo, wi) + (1.0 - p) * dist.pdf(mix, wi)
     }
 
@@ -350,30 +394,33 @@ impl<'a> GuidedSampler<'a> {
             return bsdf_pdf;
         }
         let white = LUMINANCE * at.bsdf.lobes.colour();
+        let mut p = self.params.p_bsdf;
         let guide_pdf = match &self.source {
-            GuideSource::Cached(cache) => match cache.lookup(at.p, at.side_normal()) {
-                // The region's table when it has one (src/guide/table.rs), else its density.
-                Some(Region {
-                    table: Some(t),
-                    distribution: Some(_),
-                    ..
-                }) => ChannelMix::new(white, t.channel_totals()).map(|mix| t.pdf(&mix, wi)),
-                Some(Region {
-                    distribution: Some(d),
-                    ..
-                }) => ChannelMix::new(white, d.channel_totals()).map(|mix| d.pdf(&mix, wi)),
-                _ => None,
-            },
+            GuideSource::Cached(cache) => {
+                match cache.lookup_index(at.p, at.side_normal()).map(|i| {
+                    p = self.p_bsdf_in(i);
+                    &cache.regions()[i as usize]
+                }) {
+                    // The region's table when it has one (src/guide/table.rs), else its density.
+                    Some(Region {
+                        table: Some(t),
+                        distribution: Some(_),
+                        ..
+                    }) => ChannelMix::new(white, t.channel_totals()).map(|mix| t.pdf(&mix, wi)),
+                    Some(Region {
+                        distribution: Some(d),
+                        ..
+                    }) => ChannelMix::new(white, d.channel_totals()).map(|mix| d.pdf(&mix, wi)),
+                    _ => None,
+                }
+            }
             GuideSource::Fixed(d) => {
                 ChannelMix::new(white, d.channel_totals()).map(|mix| d.pdf(&mix, wi))
             }
             GuideSource::Bsdf | GuideSource::PerEvent { .. } => None,
         };
         match guide_pdf {
-            Some(g) => {
-                let p = self.params.p_bsdf;
-                p * bsdf_pdf + (1.0 - p) * g
-            }
+            Some(g) => p * bsdf_pdf + (1.0 - p) * g,
             None => bsdf_pdf,
         }
     }
@@ -388,7 +435,7 @@ impl<'a> GuidedSampler<'a> {
     pub fn pdf_with<F: Features>(&self, at: &ScatterPoint, state: &SamplerState, wi: Vec3) -> f32 {
         match (state.distribution(), &state.mix) {
             (Some(d), Some(mix)) if !at.bsdf.is_delta_with::<F>() => {
-                self.mixture_pdf::<F>(at, d, mix, wi)
+                self.mixture_pdf::<F>(at, state, d, mix, wi)
             }
             _ => at.bsdf.pdf_with::<F>(at.wo, wi),
         }

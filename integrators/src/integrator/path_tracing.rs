@@ -20,8 +20,11 @@ use crate::mis::CameraMis;
 use crate::walk::{Arrival, Start, Vertex, Visitor, walk};
 use footprint::Rgb;
 use footprint::bsdf::TransportMode;
-use footprint::guide::sampler::{DirectionSample, GuidedSampler, SamplerState, ScatterPoint};
-use footprint::math::power_heuristic;
+use footprint::guide::sampler::{
+    DirectionSample, GuidedDraw, GuidedSampler, SamplerState, ScatterPoint,
+};
+use footprint::guide::selection::SelectionRecord;
+use footprint::math::{luminance, power_heuristic};
 use footprint::rng::Rng;
 use footprint::scene::Scene;
 use footprint::scene::features::{Features, General};
@@ -150,6 +153,10 @@ pub fn trace<'a, F: Features, S: CameraShare>(
         scene,
         out: CameraContribution::default(),
         share,
+        learning: Learning {
+            on: sampler.selection.is_some(),
+            ..Learning::default()
+        },
         features: PhantomData,
     };
     let start = Start {
@@ -162,6 +169,7 @@ pub fn trace<'a, F: Features, S: CameraShare>(
         rr_depth,
     };
     walk(scene, &start, sampler, state, rng, &mut v);
+    v.learning.finish(&mut state.selection_records);
     v.out
 }
 
@@ -169,7 +177,77 @@ struct CameraVisitor<'s, S, F> {
     scene: &'s Scene,
     out: CameraContribution,
     share: S,
+    learning: Learning,
     features: PhantomData<F>,
+}
+
+/// Guided vertices of one path followed for the learned selection probabilities
+/// (`footprint::guide::selection`): what the path brings back through each.
+#[derive(Default)]
+struct Learning {
+    on: bool,
+    vertices: [LearningVertex; MAX_LEARNING_VERTICES],
+    len: usize,
+}
+
+/// The first guided vertices of a path that teach (deeper ones carry little).
+const MAX_LEARNING_VERTICES: usize = 8;
+
+#[derive(Clone, Copy, Default)]
+struct LearningVertex {
+    draw: Option<GuidedDraw>,
+    pdf_w: f32,
+    /// Luminance of the throughput arriving at the vertex.
+    beta: f32,
+    /// Luminance of the path tracer's contributions found since the vertex scattered.
+    returned: f32,
+}
+
+impl Learning {
+    /// A guided vertex scattered.
+    #[inline]
+    fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
+        if self.on && s.guided.is_some() && self.len < MAX_LEARNING_VERTICES {
+            self.vertices[self.len] = LearningVertex {
+                draw: s.guided,
+                pdf_w: s.pdf_w,
+                beta: luminance(v.beta),
+                returned: 0.0,
+            };
+            self.len += 1;
+        }
+    }
+
+    /// The path tracer's estimate received `c`. Every vertex followed so far scattered
+    /// before it (a vertex's own next-event estimate comes before its scattering), so `c`
+    /// came back through each of them.
+    #[inline]
+    fn credit(&mut self, c: Rgb) {
+        if self.len > 0 {
+            let l = luminance(c);
+            for v in &mut self.vertices[..self.len] {
+                v.returned += l;
+            }
+        }
+    }
+
+    /// The path ended: a record per followed vertex through which light came back, with
+    /// `X` = the return per unit throughput at the vertex.
+    fn finish(&self, out: &mut Vec<SelectionRecord>) {
+        for v in &self.vertices[..self.len] {
+            let Some(d) = v.draw else { continue };
+            if v.returned > 0.0 && v.beta > 0.0 {
+                let x = v.returned / v.beta;
+                out.push(SelectionRecord {
+                    region: d.region,
+                    x2: x * x,
+                    pdf_bsdf_w: d.pdf_bsdf_w,
+                    pdf_guide_w: d.pdf_guide_w,
+                    pdf_w: v.pdf_w,
+                });
+            }
+        }
+    }
 }
 
 impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
@@ -191,6 +269,7 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
             power_heuristic(from.pdf_w, pdf_light)
         };
         self.out.pt += beta * le * w;
+        self.learning.credit(beta * le * w);
         // The second estimate takes environment paths from the path tracer alone (see
         // `light_tracing`): the same two-strategy weights.
         if S::ACTIVE {
@@ -212,12 +291,14 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
         if le.max_element() <= 0.0 {
             return;
         }
-        if from.delta {
-            self.out.pt += v.beta * le;
+        let c = if from.delta {
+            v.beta * le
         } else {
             let pdf_light = self.scene.light_pmf(li) * light.pdf_li(from.prev_p, v.hit.p);
-            self.out.pt += v.beta * le * power_heuristic(from.pdf_w, pdf_light);
-        }
+            v.beta * le * power_heuristic(from.pdf_w, pdf_light)
+        };
+        self.out.pt += c;
+        self.learning.credit(c);
         if S::ACTIVE {
             self.out.share += v.beta * le * self.share.light_hit(self.scene, li, v);
         }
@@ -262,6 +343,7 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
             power_heuristic(ls.pdf_w * pmf, sampler.pdf_with::<F>(at, state, ls.wi))
         };
         self.out.pt += contrib * w_pt;
+        self.learning.credit(contrib * w_pt);
         if S::ACTIVE {
             // Environment paths come from the path tracer alone (see `light_tracing`).
             let w = if F::ENVIRONMENT && light.is_environment() {
@@ -274,6 +356,7 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
     }
 
     fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
+        self.learning.scattered(v, s);
         if S::ACTIVE {
             self.share.scattered(v, s);
         }
