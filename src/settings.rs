@@ -142,6 +142,10 @@ pub struct MapSettings {
     /// the paths of the one before; the last shoots `photons` and `importons`, and only its
     /// particles make the maps. 1: one unguided round.
     pub rounds: u32,
+    /// With a time budget, a photon map whose guide cache is sparse (few regions guide, or
+    /// few particles per region) grows: the light pass shoots 2 to 16 times the paths, as
+    /// many as fit 15% of the budget (`Guidance::build_within` in the integrators crate).
+    pub grow: bool,
 }
 
 impl Default for MapSettings {
@@ -152,6 +156,7 @@ impl Default for MapSettings {
             max_dist: None,
             soft_glossy_max: 100.0,
             rounds: 1,
+            grow: true,
         }
     }
 }

@@ -756,3 +756,112 @@ fn a_guided_view_pass_keeps_the_cameras_importance() {
         assert!(t <= crit, "channel {c}: {m} ± {se}");
     }
 }
+
+/// A pass grown from N to 2N paths (`grow_pass`: the first N kept with their weights
+/// rescaled, the next N traced) is the pass of 2N paths: the same particles in the same
+/// order, weights equal to f32 rounding, the same escaped flux; for the light and the view
+/// pass.
+#[test]
+fn a_grown_pass_is_the_pass_of_all_its_paths() {
+    use footprint_integrators::passes::{PassKind, grow_pass, view_pass};
+    let scene = load_scene(&scene_path("cornell")).unwrap();
+    let bsdf = GuidedSampler::bsdf();
+    for kind in [PassKind::Light, PassKind::View] {
+        let run = |n: usize| match kind {
+            PassKind::Light => light_pass(&scene, &pass_settings(n, 5), &bsdf),
+            PassKind::View => view_pass(&scene, &pass_settings(n, 5), &bsdf),
+        };
+        // An odd count: the chunks of the grown part start mid-chunk of the whole.
+        let half = run(3001);
+        let grown = grow_pass(&scene, &pass_settings(6002, 5), &bsdf, kind, half);
+        let whole = run(6002);
+        assert_eq!(grown.stats.paths, 6002);
+        assert_eq!(grown.particles.len(), whole.particles.len(), "{kind:?}");
+        assert_eq!(grown.emission_points.len(), whole.emission_points.len());
+        for (a, b) in grown.particles.iter().zip(&whole.particles) {
+            assert_eq!((a.position, a.dir, a.depth), (b.position, b.dir, b.depth));
+            assert!(
+                (a.weight - b.weight).abs().max_element() <= 1e-6 * b.weight.max_element(),
+                "{kind:?}: {} vs {}",
+                a.weight,
+                b.weight
+            );
+        }
+        for (a, b) in grown.stats.escaped.iter().zip(&whole.stats.escaped) {
+            assert!((*a - *b).abs().max_element() <= 1e-5 * b.max_element().max(1e-12));
+        }
+    }
+}
+
+/// With a time budget, a sparse photon map grows and says why; a dense one, or no budget,
+/// or `maps.grow = false`, does not, and the importance map never does. door with 20,000
+/// photons is sparse (light reaches the camera's room only through the door gap); the
+/// budget is generous so that time never stops the growth here.
+#[test]
+fn sparse_photon_maps_grow_within_a_budget() {
+    use footprint_integrators::maps::{Guidance, sparse};
+    use std::time::Duration;
+    let mut door = load_scene(&scene_path("door")).unwrap();
+    door.maps.photons = 20_000;
+    door.maps.importons = 20_000;
+    let method = footprint_integrators::Method::parse("pt-footprint").unwrap();
+    let params = footprint::settings::GuideParams::default();
+    let pass = pass_settings(0, 3);
+    let budget = Some(Duration::from_secs(10_000));
+    let plain = Guidance::build_within(&door, &method, &params, &pass, None, &|| None);
+    let cache = plain.photon_cache.as_ref().unwrap();
+    assert!(
+        sparse(&cache.stats, &params).is_some(),
+        "door at 20k photons should be sparse"
+    );
+    assert!(!plain.summaries.iter().any(|s| s.contains("grown")));
+    let grown = Guidance::build_within(&door, &method, &params, &pass, budget, &|| None);
+    let line = grown
+        .summaries
+        .iter()
+        .find(|s| s.contains("grown"))
+        .expect("a summary of the growth");
+    eprintln!("{line}");
+    let paths = grown.photons.as_ref().unwrap().pass.stats.paths;
+    assert!(
+        paths >= 40_000 && paths % 20_000 == 0 && (paths / 20_000).is_power_of_two(),
+        "doublings of 20,000: {paths}"
+    );
+    let after = grown.photon_cache.as_ref().unwrap();
+    assert!(
+        after.stats.guiding > cache.stats.guiding,
+        "more regions guide after growing ({} -> {})",
+        cache.stats.guiding,
+        after.stats.guiding
+    );
+    // Light tracing's importance map keeps its count.
+    let lt = footprint_integrators::Method::parse("lt-footprint").unwrap();
+    let g = Guidance::build_within(&door, &lt, &params, &pass, budget, &|| None);
+    assert_eq!(g.importons.as_ref().unwrap().pass.stats.paths, 20_000);
+    // Switched off in the scene.
+    let mut off = door;
+    off.maps.grow = false;
+    let opts = footprint_integrators::RenderOptions {
+        method,
+        time: Some(10_000.0),
+        ..Default::default()
+    };
+    let g = footprint_integrators::render::guidance(&off, &opts, &|| None);
+    assert_eq!(g.photons.as_ref().unwrap().pass.stats.paths, 20_000);
+    // A dense map keeps its count: desk at its 200,000 photons (99% of its regions guide,
+    // their particles fill 72% of region_particles).
+    let desk = load_scene(&scene_path("desk")).unwrap();
+    let g = Guidance::build_within(&desk, &method, &params, &pass, budget, &|| None);
+    let c = g.photon_cache.as_ref().unwrap();
+    assert_eq!(
+        sparse(&c.stats, &params),
+        None,
+        "desk: {}",
+        c.stats.summary()
+    );
+    assert!(!g.summaries.iter().any(|s| s.contains("grown")));
+    assert_eq!(
+        g.photons.as_ref().unwrap().pass.stats.paths,
+        desk.maps.photons
+    );
+}

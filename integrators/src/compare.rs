@@ -537,11 +537,17 @@ pub fn run(
             }
         };
         let g0 = std::time::Instant::now();
-        // `auto` chooses at every rung, its pilot inside the rung's budget.
+        // `auto` chooses at every rung, its pilot inside the rung's budget. Sparse maps grow
+        // for the largest rung's budget (`maps.grow`), the one the table reports.
         let g = if opts.auto.is_some() {
             crate::maps::Guidance::default()
         } else {
-            guidance(scene, &opts, &|| None)
+            let largest = s.ladder.iter().copied().fold(0.0f64, f64::max);
+            let o = RenderOptions {
+                time: (largest > 0.0).then_some(largest),
+                ..opts.clone()
+            };
+            guidance(scene, &o, &|| None)
         };
         let maps = g.timings.total();
         if v.opts.method.guided() {

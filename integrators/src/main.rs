@@ -325,8 +325,8 @@ enum Command {
         #[arg(long, value_delimiter = ',')]
         methods: Option<Vec<String>>,
         /// Parameter sweep NAME=V1,V2,... over k_p, k_r, p_bsdf, learn_p_bsdf (0, 1), k_g, grid, region_particles,
-        /// region_seeds, min_depth, mis_table, raster, photons, importons, map_rounds or
-        /// sequence (sobol, independent): every method is run once per value [default methods for a sweep: pt-footprint,lt-footprint]
+        /// region_seeds, min_depth, mis_table, raster, photons, importons, map_rounds,
+        /// map_grow (0, 1) or sequence (sobol, independent): every method is run once per value [default methods for a sweep: pt-footprint,lt-footprint]
         #[arg(long)]
         sweep: Option<String>,
         /// Output folder [default: compare-<scene name>]
@@ -442,6 +442,12 @@ struct MapArgs {
     /// maps.rounds, else 1]
     #[arg(long)]
     map_rounds: Option<u32>,
+    /// With --time: when the photon map's guide cache is sparse (under 80% of its regions
+    /// guide, or their particles fill under 60% of region_particles), the light pass shoots
+    /// 2, 4, 8 or 16 times its paths, as many as fit 15% of the budget (on), or keeps its
+    /// count (off) [default: the scene's maps.grow, else on]
+    #[arg(long, value_parser = ["on", "off"])]
+    map_grow: Option<String>,
 }
 
 impl MapArgs {
@@ -462,6 +468,9 @@ impl MapArgs {
         }
         if let Some(v) = self.map_rounds {
             m.rounds = v;
+        }
+        if let Some(v) = &self.map_grow {
+            m.grow = v == "on";
         }
         m.validate().map_err(|e| anyhow::anyhow!(e.as_flag_error()))
     }
@@ -924,8 +933,9 @@ fn compare_variants(
                 "raster" => opts.guide_params.raster = num as usize,
                 "importons" => maps.importons = num as usize,
                 "map_rounds" => maps.rounds = num as u32,
+                "map_grow" => maps.grow = num != 0.0,
                 other => bail!(
-                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, learn_p_bsdf (0 or 1), k_g, grid, region_particles, region_seeds, min_depth, mis_table, raster, photons, importons, map_rounds or sequence)"
+                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, learn_p_bsdf (0 or 1), k_g, grid, region_particles, region_seeds, min_depth, mis_table, raster, photons, importons, map_rounds, map_grow (0 or 1) or sequence)"
                 ),
             }
             out.push(make(

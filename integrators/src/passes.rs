@@ -39,6 +39,7 @@ use footprint::scene::features::{Features, Specialisation};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use std::marker::PhantomData;
+use std::ops::Range;
 use std::time::{Duration, Instant};
 
 /// Settings of one pass.
@@ -163,17 +164,19 @@ impl<F: Features> Visitor for Storing<'_, F> {
     }
 }
 
+/// Traces paths `paths` (indices into the pass's streams) in chunks of [`CHUNK`].
 fn run_chunks<'a>(
-    s: &PassSettings,
+    paths: Range<usize>,
     path: impl Fn(usize, &mut ChunkOut, &mut SamplerState<'a>) + Sync,
 ) -> ChunkOut {
-    let chunks = s.paths.div_ceil(CHUNK);
+    let chunks = paths.len().div_ceil(CHUNK);
     let outs: Vec<ChunkOut> = (0..chunks)
         .into_par_iter()
         .map(|c| {
             let mut out = ChunkOut::default();
             let mut state = SamplerState::default();
-            for i in c * CHUNK..((c + 1) * CHUNK).min(s.paths) {
+            let first = paths.start + c * CHUNK;
+            for i in first..(first + CHUNK).min(paths.end) {
                 path(i, &mut out, &mut state);
             }
             out.guided = (state.prepared_events, state.fallbacks);
@@ -224,9 +227,19 @@ fn trace<'a>(
 /// The light pass: a photon map's particles. `sampler` chooses the directions (BSDF
 /// sampling, or guided by an importance map).
 pub fn light_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> PassOutput {
+    light_paths(scene, s, sampler, 0..s.paths)
+}
+
+/// The paths `paths` of the light pass `s` (each with weight `1 / s.paths`).
+fn light_paths(
+    scene: &Scene,
+    s: &PassSettings,
+    sampler: &GuidedSampler,
+    paths: Range<usize>,
+) -> PassOutput {
     let start = Instant::now();
     let inv_n = 1.0 / s.paths.max(1) as f32;
-    let all = run_chunks(s, |i, out, state| {
+    let all = run_chunks(paths.clone(), |i, out, state| {
         let mut rng = Rng::new(s.seed, DOMAIN_LIGHT_PASS, i as u64);
         let Some(start) = sample_light(scene, &mut rng) else {
             return;
@@ -257,7 +270,7 @@ pub fn light_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> P
         particles: all.particles,
         emission_points: all.emission_points,
         stats: PassStats {
-            paths: s.paths,
+            paths: paths.len(),
             guided_events: all.guided.0,
             fallbacks: all.guided.1,
             emitted,
@@ -270,11 +283,21 @@ pub fn light_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> P
 /// The view pass: an importance map's particles. `sampler` chooses the directions (BSDF
 /// sampling, or guided by a photon map).
 pub fn view_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> PassOutput {
+    view_paths(scene, s, sampler, 0..s.paths)
+}
+
+/// The paths `paths` of the view pass `s` (each with weight `1 / s.paths`).
+fn view_paths(
+    scene: &Scene,
+    s: &PassSettings,
+    sampler: &GuidedSampler,
+    paths: Range<usize>,
+) -> PassOutput {
     let start = Instant::now();
     let cam = &scene.camera;
     let inv_n = 1.0 / s.paths.max(1) as f32;
     let size = Vec2::new(cam.width as f32, cam.height as f32);
-    let all = run_chunks(s, |i, out, state| {
+    let all = run_chunks(paths.clone(), |i, out, state| {
         let mut rng = Rng::new(s.seed, DOMAIN_VIEW_PASS, i as u64);
         let raster = rng.uniform2() * size;
         let start = Start {
@@ -292,7 +315,7 @@ pub fn view_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> Pa
         particles: all.particles,
         emission_points: all.emission_points,
         stats: PassStats {
-            paths: s.paths,
+            paths: paths.len(),
             guided_events: all.guided.0,
             fallbacks: all.guided.1,
             emitted: Rgb::ONE,
@@ -300,4 +323,53 @@ pub fn view_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> Pa
             time: start.elapsed(),
         },
     }
+}
+
+/// A pass grown to `s.paths` paths: `previous` (its first paths, traced with the same
+/// settings and seed) with its weights rescaled from `1 / previous.paths` to `1 / s.paths`,
+/// and the paths after it traced. The same particles as one pass of `s.paths` paths, up to
+/// the rounding of the rescaled weights.
+pub fn grow_pass(
+    scene: &Scene,
+    s: &PassSettings,
+    sampler: &GuidedSampler,
+    kind: PassKind,
+    previous: PassOutput,
+) -> PassOutput {
+    let done = previous.stats.paths;
+    assert!(s.paths >= done, "a pass only grows");
+    let more = match kind {
+        PassKind::Light => light_paths(scene, s, sampler, done..s.paths),
+        PassKind::View => view_paths(scene, s, sampler, done..s.paths),
+    };
+    let scale = done as f32 / s.paths as f32;
+    let mut out = previous;
+    for p in &mut out.particles {
+        p.weight *= scale;
+    }
+    for e in &mut out.stats.escaped {
+        *e *= scale;
+    }
+    out.particles.extend_from_slice(&more.particles);
+    out.emission_points.extend_from_slice(&more.emission_points);
+    if out.stats.escaped.len() < more.stats.escaped.len() {
+        out.stats
+            .escaped
+            .resize(more.stats.escaped.len(), Rgb::ZERO);
+    }
+    for (e, x) in out.stats.escaped.iter_mut().zip(&more.stats.escaped) {
+        *e += *x;
+    }
+    out.stats.paths = s.paths;
+    out.stats.guided_events += more.stats.guided_events;
+    out.stats.fallbacks += more.stats.fallbacks;
+    out.stats.time += more.stats.time;
+    out
+}
+
+/// Which pass [`grow_pass`] grows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PassKind {
+    Light,
+    View,
 }

@@ -259,12 +259,19 @@ pub fn render(scene: &Scene, opts: &RenderOptions, on_progress: impl FnMut(f64))
 
 /// The maps and guide caches `opts.method` needs (none for BSDF sampling); `heap` reports
 /// the heap bytes in use (a counting allocator) so that the summaries state each map's size.
+/// With a time budget (and `maps.grow`), sparse maps grow within a share of it
+/// ([`Guidance::build_within`]).
 pub fn guidance(scene: &Scene, opts: &RenderOptions, heap: &dyn Fn() -> Option<usize>) -> Guidance {
-    Guidance::build(
+    let budget = opts
+        .time
+        .filter(|_| scene.maps.grow)
+        .map(Duration::from_secs_f64);
+    Guidance::build_within(
         scene,
         &opts.method,
         &opts.guide_params,
         &pass_settings(scene, opts),
+        budget,
         heap,
     )
 }
