@@ -228,8 +228,8 @@ pub struct GuideParams {
     /// Probability of sampling the BSDF where guiding (with `learn_p_bsdf`: where a region
     /// has not learned its own yet).
     pub p_bsdf: f32,
-    /// Path tracing learns the probability of sampling the BSDF per region of the guide
-    /// cache from its own earlier passes (`src/guide/selection.rs`).
+    /// Camera paths (path tracing, the combined image) learn the probability of sampling the
+    /// BSDF per region of the guide cache from earlier passes (`src/guide/selection.rs`).
     pub learn_p_bsdf: bool,
     pub radius_rule: RadiusRule,
     /// Side of the classic sampler's grid per hemisphere (Jensen 1995).

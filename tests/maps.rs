@@ -787,6 +787,7 @@ fn a_grown_pass_is_the_pass_of_all_its_paths() {
                 b.weight
             );
         }
+        assert_eq!(grown.stats.escaped.len(), whole.stats.escaped.len());
         for (a, b) in grown.stats.escaped.iter().zip(&whole.stats.escaped) {
             assert!((*a - *b).abs().max_element() <= 1e-5 * b.max_element().max(1e-12));
         }
@@ -834,9 +835,10 @@ fn sparse_photon_maps_grow_within_a_budget() {
         cache.stats.guiding,
         after.stats.guiding
     );
-    // Light tracing's importance map keeps its count.
-    let lt = footprint_integrators::Method::parse("lt-footprint").unwrap();
-    let g = Guidance::build_within(&door, &lt, &params, &pass, budget, &|| None);
+    // The importance map keeps its count, also where the photon map grows beside it.
+    let both = footprint_integrators::Method::parse("combined-footprint").unwrap();
+    let g = Guidance::build_within(&door, &both, &params, &pass, budget, &|| None);
+    assert!(g.photons.as_ref().unwrap().pass.stats.paths > 20_000);
     assert_eq!(g.importons.as_ref().unwrap().pass.stats.paths, 20_000);
     // Switched off in the scene.
     let mut off = door;

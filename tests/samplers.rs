@@ -1069,6 +1069,29 @@ fn cached_regions_pass_chi_square_with_coloured_throughput() {
             guide.name(),
             r.p_value
         );
+        // The density a draw reports is what `pdf` and (for a white path) the combined
+        // image's `mis_pdf` give the same direction, with the same (learned) probability:
+        // a sampler that kept the default 0.5 in either would be off by far more than 1e-4.
+        let white = ScatterPoint {
+            throughput: Rgb::ONE,
+            ..at
+        };
+        let mut white_state = SamplerState::default();
+        sampler.prepare(&white, &mut white_state);
+        let mut rng = Rng::new(31, 0, 0);
+        for _ in 0..200 {
+            let Some(s) = sampler.sample(&white, &white_state, &mut rng) else {
+                continue;
+            };
+            let pdf = sampler.pdf(&white, &white_state, s.wi);
+            let mis = sampler.mis_pdf(&white, s.wi);
+            let close = |a: f32, b: f32| (a - b).abs() <= 1e-4 * b.abs().max(1e-6);
+            assert!(close(s.pdf_w, pdf), "sample {} vs pdf {pdf}", s.pdf_w);
+            // (Footprints sampled from their caps give the weights a tabulated density.)
+            if region.table.is_none() {
+                assert!(close(s.pdf_w, mis), "sample {} vs mis_pdf {mis}", s.pdf_w);
+            }
+        }
     }
 }
 

@@ -537,25 +537,30 @@ pub fn run(
             }
         };
         let g0 = std::time::Instant::now();
-        // `auto` chooses at every rung, its pilot inside the rung's budget. Sparse maps grow
-        // for the largest rung's budget (`maps.grow`), the one the table reports.
+        // `auto` chooses at every rung, its pilot inside the rung's budget. A sparse photon
+        // map grows with the budget (`maps.grow`): then every rung builds its own maps for
+        // its own budget, as a render of that budget would.
         let g = if opts.auto.is_some() {
             crate::maps::Guidance::default()
         } else {
-            let largest = s.ladder.iter().copied().fold(0.0f64, f64::max);
-            let o = RenderOptions {
-                time: (largest > 0.0).then_some(largest),
-                ..opts.clone()
-            };
-            guidance(scene, &o, &|| None)
+            guidance(scene, &opts, &|| None)
         };
+        let per_rung = scene.maps.grow
+            && g.photon_cache
+                .as_ref()
+                .is_some_and(|c| crate::maps::sparse(&c.stats, &opts.guide_params).is_some());
         let maps = g.timings.total();
         if v.opts.method.guided() {
             log(&format!(
-                "[{}/{total_runs}] {}: maps and caches built in {:.2} s, charged to every rung",
+                "[{}/{total_runs}] {}: maps and caches built in {:.2} s, {}",
                 mi * s.ladder.len() + 1,
                 v.label,
-                maps.as_secs_f64()
+                maps.as_secs_f64(),
+                if per_rung {
+                    "and again for every rung (its sparse photon map grows with the rung's budget)"
+                } else {
+                    "charged to every rung"
+                }
             ));
         }
         wall += g0.elapsed().as_secs_f64();
@@ -600,6 +605,13 @@ pub fn run(
                         render_prepared(scene, &chosen, g, charged, StopRule::WithinBudget, |_| {});
                     r.auto = Some(choice.reason);
                     (r, charged)
+                }
+                None if per_rung => {
+                    let own = guidance(scene, &opts, &|| None);
+                    let maps = own.timings.total();
+                    let r =
+                        render_prepared(scene, &opts, &own, maps, StopRule::WithinBudget, |_| {});
+                    (r, maps)
                 }
                 None => (
                     render_prepared(scene, &opts, &g, maps, StopRule::WithinBudget, |_| {}),

@@ -105,8 +105,8 @@ struct GuideParamArgs {
     /// unguided ones (off) [default: guide.guided_mis, else on]
     #[arg(long, value_parser = ["on", "off"])]
     guided_mis: Option<String>,
-    /// Path tracing learns the probability of sampling the BSDF per region of the guide
-    /// cache from its earlier passes (on) or keeps --p-bsdf everywhere (off)
+    /// Camera paths (pt, combined) learn the probability of sampling the BSDF per region of
+    /// the guide cache from earlier passes (on) or keep --p-bsdf everywhere (off)
     /// [default: guide.learn_p_bsdf, else off]
     #[arg(long, value_parser = ["on", "off"])]
     learn_p_bsdf: Option<String>,
@@ -422,7 +422,8 @@ impl ImportArgs {
 /// Particle-map flags, shared by the commands that build maps.
 #[derive(clap::Args, Debug, Clone)]
 struct MapArgs {
-    /// Photon paths shot by the light pass [default: the scene's maps.photons, else 200000]
+    /// Photon paths shot by the light pass (with --time, more when the map grows: --map-grow)
+    /// [default: the scene's maps.photons, else 200000]
     #[arg(long)]
     photons: Option<usize>,
     /// Importon paths shot by the view pass [default: the scene's maps.importons, else 200000]
@@ -445,7 +446,8 @@ struct MapArgs {
     /// With --time: when the photon map's guide cache is sparse (under 80% of its regions
     /// guide, or their particles fill under 60% of region_particles), the light pass shoots
     /// 2, 4, 8 or 16 times its paths, as many as fit 15% of the budget (on), or keeps its
-    /// count (off) [default: the scene's maps.grow, else on]
+    /// count (off); not with several map rounds or --guide-cache off [default: the scene's
+    /// maps.grow, else on]
     #[arg(long, value_parser = ["on", "off"])]
     map_grow: Option<String>,
 }

@@ -13,8 +13,9 @@ use footprint::guide::particle_map::{MapKind, ParticleInput, ParticleMap};
 use footprint::guide::sampler::{GuideSource, GuidedSampler};
 use footprint::scene::Scene;
 use footprint::settings::GuideParams;
+use footprint::settings::MAX_MAP_PATHS;
 use rayon::prelude::*;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// A built map with what it cost.
 pub struct BuiltMap {
@@ -321,7 +322,12 @@ impl Guidance {
         let Some(budget) = budget.filter(|_| scene.maps.rounds <= 1 && params.cache) else {
             return Self::from_passes(scene, method, params, passes, heap);
         };
-        let first = Self::from_passes(scene, method, params, passes.clone(), heap);
+        // The passes are kept (a copy, timed and charged) in case the photon map grows.
+        let copy_start = Instant::now();
+        let kept = passes.clone();
+        let copying = copy_start.elapsed();
+        let mut first = Self::from_passes(scene, method, params, kept, heap);
+        first.timings.map_builds += copying;
         let Some(why) = first
             .photon_cache
             .as_ref()
@@ -334,8 +340,10 @@ impl Guidance {
         let built = first.timings.map_builds + first.timings.cache_builds;
         let cost =
             |factor: u32| passes.light_time * factor + passes.view_time + built * (1 + factor);
+        let paths = scene.maps.photons;
         let mut factor = 1u32;
         while factor < 1 << MAX_GROWTHS
+            && 2 * factor as usize * paths <= MAX_MAP_PATHS
             && cost(2 * factor).as_secs_f64() <= GROWTH_SHARE * budget.as_secs_f64()
         {
             factor *= 2;
@@ -343,6 +351,7 @@ impl Guidance {
         let Some(light) = passes.light.take().filter(|_| factor > 1) else {
             return first;
         };
+        let first_builds = (first.timings.map_builds, first.timings.cache_builds);
         drop(first);
         let s = PassSettings {
             paths: factor as usize * light.stats.paths,
@@ -355,7 +364,8 @@ impl Guidance {
         passes.light = Some(light);
         let mut g = Self::from_passes(scene, method, params, passes, heap);
         // The first maps and caches were built for nothing: their time counts.
-        g.timings.cache_builds += built;
+        g.timings.map_builds += first_builds.0;
+        g.timings.cache_builds += first_builds.1;
         g.summaries.push(format!(
             "maps grown with the {:.0}-s budget: {grown} (the first build, {:.2} s, discarded)",
             budget.as_secs_f64(),

@@ -414,6 +414,7 @@ fn trace(
         opts.spp
     );
     let mut last_pass_end = elapsed_since(start);
+    let mut records: Vec<SelectionRecord> = Vec::new();
     let first_pass_start = last_pass_end;
     loop {
         // The stream index of this pass (a shard draws every `count`-th pass).
@@ -481,11 +482,9 @@ fn trace(
             for r in &rows {
                 camera_guide.add(&r.2);
             }
-            if let Some(l) = &learner {
+            if learner.is_some() {
                 // Rows in order: the learned values do not depend on the thread count.
-                let records: Vec<SelectionRecord> =
-                    rows.iter().flat_map(|r| r.3.iter().copied()).collect();
-                l.absorb(&records);
+                records.extend(rows.iter().flat_map(|r| r.3.iter().copied()));
             }
         }
         camera_time += camera_start.elapsed();
@@ -519,6 +518,12 @@ fn trace(
             }
         }
         light_time += light_start.elapsed();
+        // The learned probabilities change only here, between passes: the light paths of
+        // the combined image weigh the pass's camera paths with the values they drew with.
+        if let Some(l) = &learner {
+            l.absorb(&records);
+            records.clear();
+        }
         passes += 1;
         let elapsed = elapsed_since(start);
         let pass_time = elapsed - last_pass_end;

@@ -35,7 +35,7 @@ pub const CANDIDATES: [f32; 9] = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9];
 /// second-moment estimates are heavy-tailed: with 32, the choice followed the noise to the
 /// grid's ends (on Veach Ajar a third of the learned regions at 0.1 or 0.9, and the image's
 /// error rose by 20-50%).
-pub const MIN_RECORDS: u32 = 512;
+pub const MIN_RECORDS: u64 = 512;
 
 /// What one guided vertex of a finished path teaches its region.
 #[derive(Clone, Copy, Debug)]
@@ -54,7 +54,7 @@ pub struct SelectionRecord {
 #[derive(Clone, Copy, Debug, Default)]
 struct RegionSums {
     moments: [f64; CANDIDATES.len()],
-    records: u32,
+    records: u64,
 }
 
 /// The learned probabilities of one guide cache's regions, for one render.
@@ -163,7 +163,7 @@ mod tests {
     use super::*;
 
     /// `n` records of region 0 drawn with the even mixture, all with the same densities.
-    fn records(n: u32, pdf_bsdf_w: f32, pdf_guide_w: f32) -> Vec<SelectionRecord> {
+    fn records(n: u64, pdf_bsdf_w: f32, pdf_guide_w: f32) -> Vec<SelectionRecord> {
         (0..n)
             .map(|_| SelectionRecord {
                 region: 0,
