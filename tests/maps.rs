@@ -757,32 +757,28 @@ fn a_guided_view_pass_keeps_the_cameras_importance() {
     }
 }
 
-/// A pass grown from N to 2N paths (`grow_pass`: the first N kept with their weights
-/// rescaled, the next N traced) is the pass of 2N paths: the same particles in the same
-/// order, weights equal to f32 rounding, the same escaped flux; for the light and the view
-/// pass.
+/// A light pass grown from N to 2N paths (`grow_light_pass`: the first N kept with their
+/// weights rescaled, the next N traced) is the pass of 2N paths: the same particles in the
+/// same order, weights equal to f32 rounding, the same escaped flux.
 #[test]
 fn a_grown_pass_is_the_pass_of_all_its_paths() {
-    use footprint_integrators::passes::{PassKind, grow_pass, view_pass};
+    use footprint_integrators::passes::grow_light_pass;
     let scene = load_scene(&scene_path("cornell")).unwrap();
     let bsdf = GuidedSampler::bsdf();
-    for kind in [PassKind::Light, PassKind::View] {
-        let run = |n: usize| match kind {
-            PassKind::Light => light_pass(&scene, &pass_settings(n, 5), &bsdf),
-            PassKind::View => view_pass(&scene, &pass_settings(n, 5), &bsdf),
-        };
+    {
+        let run = |n: usize| light_pass(&scene, &pass_settings(n, 5), &bsdf);
         // An odd count: the chunks of the grown part start mid-chunk of the whole.
         let half = run(3001);
-        let grown = grow_pass(&scene, &pass_settings(6002, 5), &bsdf, kind, half);
+        let grown = grow_light_pass(&scene, &pass_settings(6002, 5), &bsdf, half);
         let whole = run(6002);
         assert_eq!(grown.stats.paths, 6002);
-        assert_eq!(grown.particles.len(), whole.particles.len(), "{kind:?}");
+        assert_eq!(grown.particles.len(), whole.particles.len());
         assert_eq!(grown.emission_points.len(), whole.emission_points.len());
         for (a, b) in grown.particles.iter().zip(&whole.particles) {
             assert_eq!((a.position, a.dir, a.depth), (b.position, b.dir, b.depth));
             assert!(
                 (a.weight - b.weight).abs().max_element() <= 1e-6 * b.weight.max_element(),
-                "{kind:?}: {} vs {}",
+                "{} vs {}",
                 a.weight,
                 b.weight
             );
@@ -824,10 +820,8 @@ fn sparse_photon_maps_grow_within_a_budget() {
         .expect("a summary of the growth");
     eprintln!("{line}");
     let paths = grown.photons.as_ref().unwrap().pass.stats.paths;
-    assert!(
-        paths >= 40_000 && paths % 20_000 == 0 && (paths / 20_000).is_power_of_two(),
-        "doublings of 20,000: {paths}"
-    );
+    // Neither the generous budget nor the path limit stops it: every doubling is taken.
+    assert_eq!(paths, 20_000 << footprint_integrators::maps::MAX_GROWTHS);
     let after = grown.photon_cache.as_ref().unwrap();
     assert!(
         after.stats.guiding > cache.stats.guiding,

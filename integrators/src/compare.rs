@@ -545,7 +545,7 @@ pub fn run(
         } else {
             guidance(scene, &opts, &|| None)
         };
-        let per_rung = scene.maps.grow
+        let per_rung = crate::maps::may_grow(scene, &opts.guide_params)
             && g.photon_cache
                 .as_ref()
                 .is_some_and(|c| crate::maps::sparse(&c.stats, &opts.guide_params).is_some());

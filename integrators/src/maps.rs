@@ -7,7 +7,7 @@
 //! run whenever a cache is built.
 
 use crate::method::Method;
-use crate::passes::{PassKind, PassOutput, PassSettings, grow_pass, light_pass, view_pass};
+use crate::passes::{PassOutput, PassSettings, grow_light_pass, light_pass, view_pass};
 use footprint::guide::cache::{CacheStats, GuideCache};
 use footprint::guide::particle_map::{MapKind, ParticleInput, ParticleMap};
 use footprint::guide::sampler::{GuideSource, GuidedSampler};
@@ -265,6 +265,12 @@ pub const SPARSE_FILL: f64 = 0.6;
 /// Most doublings of a pass (16 times its paths).
 pub const MAX_GROWTHS: u32 = 4;
 
+/// True when `scene`'s photon map may grow with a time budget (`maps.grow`, one map round,
+/// the guide cache on): the one condition [`Guidance::build_within`] and `compare` share.
+pub fn may_grow(scene: &Scene, params: &GuideParams) -> bool {
+    scene.maps.grow && scene.maps.rounds <= 1 && params.cache
+}
+
 /// Why a cache with statistics `st` is sparse ([`SPARSE_GUIDING`], [`SPARSE_FILL`]), or
 /// `None`.
 pub fn sparse(st: &CacheStats, params: &GuideParams) -> Option<String> {
@@ -296,7 +302,7 @@ impl Guidance {
 
     /// [`Guidance::build`]; with `budget` (a render's time budget) and one map round, a
     /// photon map whose guide cache is [`sparse`] grows: the light pass shoots `2^k` times
-    /// its paths (the first ones kept, their weights rescaled, [`grow_pass`]), `k` the
+    /// its paths (the first ones kept, their weights rescaled, [`grow_light_pass`]), `k` the
     /// largest (at most [`MAX_GROWTHS`]) whose passes and builds take at most
     /// [`GROWTH_SHARE`] of the budget, and the maps and caches are built again (the first
     /// build's time counts). A dense map costs nothing more. The run summary says what grew
@@ -318,15 +324,17 @@ impl Guidance {
                 ..Default::default()
             };
         }
-        let mut passes = run_passes(scene, method, params, pass);
-        let Some(budget) = budget.filter(|_| scene.maps.rounds <= 1 && params.cache) else {
+        let passes = run_passes(scene, method, params, pass);
+        let Some(budget) = budget.filter(|_| may_grow(scene, params)) else {
             return Self::from_passes(scene, method, params, passes, heap);
         };
-        // The passes are kept (a copy, timed and charged) in case the photon map grows.
+        // The view pass is kept (a copy, timed and charged) as the seeds of a grown photon
+        // map's cache; the light pass comes back out of the photon map.
+        let (light_time, view_time) = (passes.light_time, passes.view_time);
         let copy_start = Instant::now();
-        let kept = passes.clone();
+        let view = passes.view.clone();
         let copying = copy_start.elapsed();
-        let mut first = Self::from_passes(scene, method, params, kept, heap);
+        let mut first = Self::from_passes(scene, method, params, passes, heap);
         first.timings.map_builds += copying;
         let Some(why) = first
             .photon_cache
@@ -338,9 +346,10 @@ impl Guidance {
         // The largest doubling whose passes and builds (the first, and the grown one, taken
         // to grow with the particles) fit the share.
         let built = first.timings.map_builds + first.timings.cache_builds;
-        let cost =
-            |factor: u32| passes.light_time * factor + passes.view_time + built * (1 + factor);
-        let paths = scene.maps.photons;
+        let cost = |factor: u32| light_time * factor + view_time + built * (1 + factor);
+        let Some(paths) = first.photons.as_ref().map(|m| m.pass.stats.paths) else {
+            return first;
+        };
         let mut factor = 1u32;
         while factor < 1 << MAX_GROWTHS
             && 2 * factor as usize * paths <= MAX_MAP_PATHS
@@ -348,10 +357,15 @@ impl Guidance {
         {
             factor *= 2;
         }
-        let Some(light) = passes.light.take().filter(|_| factor > 1) else {
+        if factor == 1 {
             return first;
-        };
+        }
         let first_builds = (first.timings.map_builds, first.timings.cache_builds);
+        let light = first
+            .photons
+            .take()
+            .expect("a sparse photon cache has its map")
+            .pass;
         drop(first);
         let s = PassSettings {
             paths: factor as usize * light.stats.paths,
@@ -359,9 +373,14 @@ impl Guidance {
         };
         let grown = format!("photons {} -> {} paths ({why})", light.stats.paths, s.paths);
         let before = light.stats.time;
-        let light = grow_pass(scene, &s, &GuidedSampler::bsdf(), PassKind::Light, light);
-        passes.light_time += light.stats.time - before;
-        passes.light = Some(light);
+        let light = grow_light_pass(scene, &s, &GuidedSampler::bsdf(), light);
+        let passes = Passes {
+            light_time: light_time + light.stats.time - before,
+            view_time,
+            light: Some(light),
+            view,
+            rounds: Vec::new(),
+        };
         let mut g = Self::from_passes(scene, method, params, passes, heap);
         // The first maps and caches were built for nothing: their time counts.
         g.timings.map_builds += first_builds.0;

@@ -283,21 +283,11 @@ fn light_paths(
 /// The view pass: an importance map's particles. `sampler` chooses the directions (BSDF
 /// sampling, or guided by a photon map).
 pub fn view_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> PassOutput {
-    view_paths(scene, s, sampler, 0..s.paths)
-}
-
-/// The paths `paths` of the view pass `s` (each with weight `1 / s.paths`).
-fn view_paths(
-    scene: &Scene,
-    s: &PassSettings,
-    sampler: &GuidedSampler,
-    paths: Range<usize>,
-) -> PassOutput {
     let start = Instant::now();
     let cam = &scene.camera;
     let inv_n = 1.0 / s.paths.max(1) as f32;
     let size = Vec2::new(cam.width as f32, cam.height as f32);
-    let all = run_chunks(paths.clone(), |i, out, state| {
+    let all = run_chunks(0..s.paths, |i, out, state| {
         let mut rng = Rng::new(s.seed, DOMAIN_VIEW_PASS, i as u64);
         let raster = rng.uniform2() * size;
         let start = Start {
@@ -315,7 +305,7 @@ fn view_paths(
         particles: all.particles,
         emission_points: all.emission_points,
         stats: PassStats {
-            paths: paths.len(),
+            paths: s.paths,
             guided_events: all.guided.0,
             fallbacks: all.guided.1,
             emitted: Rgb::ONE,
@@ -325,23 +315,19 @@ fn view_paths(
     }
 }
 
-/// A pass grown to `s.paths` paths: `previous` (its first paths, traced with the same
+/// A light pass grown to `s.paths` paths: `previous` (its first paths, traced with the same
 /// settings and seed) with its weights rescaled from `1 / previous.paths` to `1 / s.paths`,
 /// and the paths after it traced. The same particles as one pass of `s.paths` paths, up to
 /// the rounding of the rescaled weights.
-pub fn grow_pass(
+pub fn grow_light_pass(
     scene: &Scene,
     s: &PassSettings,
     sampler: &GuidedSampler,
-    kind: PassKind,
     previous: PassOutput,
 ) -> PassOutput {
     let done = previous.stats.paths;
     assert!(s.paths >= done, "a pass only grows");
-    let more = match kind {
-        PassKind::Light => light_paths(scene, s, sampler, done..s.paths),
-        PassKind::View => view_paths(scene, s, sampler, done..s.paths),
-    };
+    let more = light_paths(scene, s, sampler, done..s.paths);
     let scale = done as f32 / s.paths as f32;
     let mut out = previous;
     for p in &mut out.particles {
@@ -365,11 +351,4 @@ pub fn grow_pass(
     out.stats.fallbacks += more.stats.fallbacks;
     out.stats.time += more.stats.time;
     out
-}
-
-/// Which pass [`grow_pass`] grows.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum PassKind {
-    Light,
-    View,
 }

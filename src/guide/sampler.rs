@@ -92,7 +92,7 @@ pub struct DirectionSample {
 }
 
 /// How a guided direction was drawn (for [`SelectionLearner`]).
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub struct GuidedDraw {
     /// The guide cache's region.
     pub region: u32,

@@ -150,7 +150,11 @@ impl Texture {
                 let (y0, y1) = wrap_pair(y0 as i32, h);
                 let row0 = y0 * *width as usize;
                 let row1 = y1 * *width as usize;
-                let texel = |i: usize| srgb8_to_linear(texels[i]);
+                let lut = srgb8_table();
+                let texel = |i: usize| {
+                    let [r, g, b, _] = texels[i];
+                    Rgb::new(lut[r as usize], lut[g as usize], lut[b as usize])
+                };
                 let a = texel(row0 + x0).lerp(texel(row0 + x1), fx);
                 let b = texel(row1 + x0).lerp(texel(row1 + x1), fx);
                 a.lerp(b, fy)

@@ -195,7 +195,7 @@ const MAX_LEARNING_VERTICES: usize = 8;
 
 #[derive(Clone, Copy, Default)]
 struct LearningVertex {
-    draw: Option<GuidedDraw>,
+    draw: GuidedDraw,
     pdf_w: f32,
     /// Luminance of the throughput arriving at the vertex.
     beta: f32,
@@ -207,9 +207,12 @@ impl Learning {
     /// A guided vertex scattered.
     #[inline]
     fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
-        if self.on && s.guided.is_some() && self.len < MAX_LEARNING_VERTICES {
+        let Some(draw) = s.guided.filter(|_| self.on) else {
+            return;
+        };
+        if self.len < MAX_LEARNING_VERTICES {
             self.vertices[self.len] = LearningVertex {
-                draw: s.guided,
+                draw,
                 pdf_w: s.pdf_w,
                 beta: luminance(v.beta),
                 returned: 0.0,
@@ -235,7 +238,7 @@ impl Learning {
     /// `X` = the return per unit throughput at the vertex.
     fn finish(&self, out: &mut Vec<SelectionRecord>) {
         for v in &self.vertices[..self.len] {
-            let Some(d) = v.draw else { continue };
+            let d = v.draw;
             if v.returned > 0.0 && v.beta > 0.0 {
                 let x = v.returned / v.beta;
                 out.push(SelectionRecord {
