@@ -987,7 +987,11 @@ fn cached_regions_pass_chi_square_with_coloured_throughput() {
         let cache = GuideCache::build(&map, guide, &seeds, &params, 0.2);
         let x = Vec3::new(0.1, 0.1, 0.0);
         let region = cache.lookup(x, Vec3::Z).expect("a region holds the point");
-        let dist = region.distribution.as_deref().expect("the region guides");
+        let dist = region
+            .distribution
+            .as_ref()
+            .expect("the region guides")
+            .get();
         let learner = SelectionLearner::new(cache.regions().len(), params.p_bsdf);
         let i = cache.lookup_index(x, Vec3::Z).unwrap();
         // Returns only where the guide is dense and the BSDF is not: the least BSDF share.

@@ -22,6 +22,7 @@
 //! marked as not guiding (the fallback decision is cached too). Images do not depend on
 //! the thread count: regions are built independently, without random numbers.
 
+use crate::guide::grid::GridDistribution;
 use crate::guide::particle_map::{ParticleMap, normal_bucket};
 use crate::guide::table::DirectionTable;
 use crate::guide::{Guide, GuideDistribution, GuideParticle};
@@ -44,10 +45,36 @@ pub struct Region {
     pub centre: Vec3,
     pub normal: Vec3,
     pub particles: u32,
-    pub distribution: Option<Box<dyn GuideDistribution>>,
+    pub distribution: Option<RegionDistribution>,
     /// The distribution tabulated for the combined image's MIS weights (`None`: they read
     /// the exact density).
     pub table: Option<DirectionTable>,
+}
+
+/// A region's distribution. A raster (what footprints and the grid build for the cache) is
+/// held inline, so that a guided event reaches its cells from the region without a
+/// pointer chase or a dynamic call; any other guide's distribution stays boxed.
+pub enum RegionDistribution {
+    Raster(GridDistribution),
+    Boxed(Box<dyn GuideDistribution>),
+}
+
+impl RegionDistribution {
+    /// Takes a guide's distribution, unboxing a raster.
+    pub fn new(d: Box<dyn GuideDistribution>) -> Self {
+        match d.as_any().downcast_ref::<GridDistribution>() {
+            Some(g) => RegionDistribution::Raster(g.clone()),
+            None => RegionDistribution::Boxed(d),
+        }
+    }
+
+    /// The distribution behind the trait.
+    pub fn get(&self) -> &dyn GuideDistribution {
+        match self {
+            RegionDistribution::Raster(g) => g,
+            RegionDistribution::Boxed(d) => d.as_ref(),
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -141,7 +168,10 @@ impl GuideCache {
             + guiding
                 .iter()
                 .filter_map(|r| r.distribution.as_ref())
-                .map(|d| d.heap_bytes())
+                .map(|d| match d {
+                    RegionDistribution::Raster(g) => g.heap_bytes(),
+                    RegionDistribution::Boxed(b) => b.heap_bytes() + std::mem::size_of_val(&**b),
+                })
                 .sum::<usize>()
             + guiding
                 .iter()
@@ -333,12 +363,14 @@ fn build_region(
     }
     out.particles = particles.len() as u32;
     let frame = Frame::from_z(job.normal);
-    out.distribution = guide.build(&frame, &particles, params);
+    out.distribution = guide
+        .build(&frame, &particles, params)
+        .map(RegionDistribution::new);
     if params.guided_mis && params.mis_table > 0 {
         out.table = out
             .distribution
             .as_ref()
-            .and_then(|d| d.tabulate(&frame, params.mis_table));
+            .and_then(|d| d.get().tabulate(&frame, params.mis_table));
     }
     out
 }

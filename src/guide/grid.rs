@@ -146,6 +146,75 @@ impl GridDistribution {
     pub fn prob(&self, ch: usize, cell: usize) -> f32 {
         self.counts[cell][ch] as f32 / QUANTUM as f32
     }
+    /// A direction drawn as [`GuideDistribution::sample`] draws it, with the cell `pdf`
+    /// puts it in when that is the cell it was drawn in (all but a rounding case).
+    #[inline]
+    fn draw(&self, mix: &ChannelMix, rng: &mut Rng) -> Option<(Vec3, Option<usize>)> {
+        let ch = mix.pick(rng.uniform());
+        let s = self.side;
+        let rows = &self.row_cdf[ch * 2 * s..(ch + 1) * 2 * s];
+        if rows[2 * s - 1] == 0 {
+            return None;
+        }
+        // The quantum below `u`: the row whose cumulative count first exceeds it, then the
+        // cell of that row whose running count does.
+        let t = ((rng.uniform() * QUANTUM as f32) as u32).min(QUANTUM - 1);
+        let row = rows.partition_point(|&c| c as u32 <= t).min(2 * s - 1);
+        let mut left = t - if row > 0 { rows[row - 1] as u32 } else { 0 };
+        let mut cell = row * s + s - 1;
+        for (i, c) in self.counts[row * s..(row + 1) * s].iter().enumerate() {
+            let c = c[ch] as u32;
+            if left < c {
+                cell = row * s + i;
+                break;
+            }
+            left -= c;
+        }
+        let (hemi, rest) = (cell / (s * s), cell % (s * s));
+        let (j, i) = (rest / s, rest % s);
+        // A direction uniform in the cell, drawn again in the rare case that rounding puts
+        // it in a neighbouring cell as `pdf` sees it (sample and pdf agree by construction).
+        let mut w = Vec3::ZERO;
+        for _ in 0..16 {
+            let u = rng.uniform2();
+            let vv = (j as f32 + u.y) / s as f32;
+            // cos θ = 1 - (i + u)/s, written so that the horizon ring never rounds to 0.
+            let cos_t = ((s - i) as f32 - u.x) / s as f32;
+            let sin_t = safe_sqrt(1.0 - cos_t * cos_t);
+            let phi = 2.0 * PI * vv;
+            let z = if hemi == 0 { cos_t } else { -cos_t };
+            w = self
+                .frame
+                .to_world(Vec3::new(sin_t * phi.cos(), sin_t * phi.sin(), z))
+                .normalize();
+            if self.cell_of(self.frame.to_local(w)) == cell {
+                return Some((w, Some(cell)));
+            }
+        }
+        Some((w, None))
+    }
+
+    /// The density of every direction in `cell`.
+    #[inline]
+    fn cell_pdf(&self, mix: &ChannelMix, cell: usize) -> f32 {
+        let c = self.counts[cell];
+        let p = mix.0[0] * c[0] as f32 + mix.0[1] * c[1] as f32 + mix.0[2] * c[2] as f32;
+        p / (QUANTUM as f32 * self.cell_solid_angle())
+    }
+
+    /// [`GuideDistribution::sample`] and the [`GuideDistribution::pdf`] of the drawn
+    /// direction, read from the cell it was drawn in (the same number `pdf` gives).
+    #[inline]
+    pub fn sample_with_pdf(&self, mix: &ChannelMix, rng: &mut Rng) -> Option<(Vec3, f32)> {
+        let (w, cell) = self.draw(mix, rng)?;
+        Some((
+            w,
+            match cell {
+                Some(c) => self.cell_pdf(mix, c),
+                None => self.pdf(mix, w),
+            },
+        ))
+    }
 }
 
 /// Integers `c_i` with `Σ c_i = QUANTUM` closest to `QUANTUM · p_i` for probabilities `p`
@@ -185,56 +254,12 @@ impl GuideDistribution for GridDistribution {
     }
 
     fn sample(&self, mix: &ChannelMix, rng: &mut Rng) -> Option<Vec3> {
-        let ch = mix.pick(rng.uniform());
-        let s = self.side;
-        let rows = &self.row_cdf[ch * 2 * s..(ch + 1) * 2 * s];
-        if rows[2 * s - 1] == 0 {
-            return None;
-        }
-        // The quantum below `u`: the row whose cumulative count first exceeds it, then the
-        // cell of that row whose running count does.
-        let t = ((rng.uniform() * QUANTUM as f32) as u32).min(QUANTUM - 1);
-        let row = rows.partition_point(|&c| c as u32 <= t).min(2 * s - 1);
-        let mut left = t - if row > 0 { rows[row - 1] as u32 } else { 0 };
-        let mut cell = row * s + s - 1;
-        for (i, c) in self.counts[row * s..(row + 1) * s].iter().enumerate() {
-            let c = c[ch] as u32;
-            if left < c {
-                cell = row * s + i;
-                break;
-            }
-            left -= c;
-        }
-        let (hemi, rest) = (cell / (s * s), cell % (s * s));
-        let (j, i) = (rest / s, rest % s);
-        // A direction uniform in the cell, drawn again in the rare case that rounding puts
-        // it in a neighbouring cell as `pdf` sees it (sample and pdf agree by construction).
-        let mut w = Vec3::ZERO;
-        for _ in 0..16 {
-            let u = rng.uniform2();
-            let vv = (j as f32 + u.y) / s as f32;
-            // cos θ = 1 - (i + u)/s, written so that the horizon ring never rounds to 0.
-            let cos_t = ((s - i) as f32 - u.x) / s as f32;
-            let sin_t = safe_sqrt(1.0 - cos_t * cos_t);
-            let phi = 2.0 * PI * vv;
-            let z = if hemi == 0 { cos_t } else { -cos_t };
-            w = self
-                .frame
-                .to_world(Vec3::new(sin_t * phi.cos(), sin_t * phi.sin(), z))
-                .normalize();
-            if self.cell_of(self.frame.to_local(w)) == cell {
-                return Some(w);
-            }
-        }
-        Some(w)
+        self.draw(mix, rng).map(|(w, _)| w)
     }
 
     fn pdf(&self, mix: &ChannelMix, wi: Vec3) -> f32 {
-        let c = self.counts[self.cell_of(self.frame.to_local(wi))];
-        let p = mix.0[0] * c[0] as f32 + mix.0[1] * c[1] as f32 + mix.0[2] * c[2] as f32;
-        p / (QUANTUM as f32 * self.cell_solid_angle())
+        self.cell_pdf(mix, self.cell_of(self.frame.to_local(wi)))
     }
-
     fn as_any(&self) -> &dyn std::any::Any {
         self
     }

@@ -19,7 +19,8 @@
 
 use crate::Rgb;
 use crate::bsdf::{Bsdf, TransportMode};
-use crate::guide::cache::{GuideCache, Region};
+use crate::guide::cache::{GuideCache, Region, RegionDistribution};
+use crate::guide::grid::GridDistribution;
 use crate::guide::particle_map::{Neighbor, ParticleMap};
 use crate::guide::selection::SelectionLearner;
 use crate::guide::{ChannelMix, Guide, GuideDistribution, GuideParticle, guides_at};
@@ -124,7 +125,35 @@ enum Prepared<'a> {
     #[default]
     Bsdf,
     Cached(&'a dyn GuideDistribution),
+    Region(&'a RegionDistribution),
     Owned(Box<dyn GuideDistribution>),
+}
+
+/// The prepared distribution as `sample` and `pdf` call it: a raster by a static call (the
+/// guide cache's common case), anything else through the trait.
+#[derive(Clone, Copy)]
+enum DistRef<'b> {
+    Raster(&'b GridDistribution),
+    Dyn(&'b dyn GuideDistribution),
+}
+
+impl DistRef<'_> {
+    /// A draw and its density (a raster reads it from the drawn cell).
+    #[inline]
+    fn sample_with_pdf(self, mix: &ChannelMix, rng: &mut Rng) -> Option<(Vec3, f32)> {
+        match self {
+            DistRef::Raster(g) => g.sample_with_pdf(mix, rng),
+            DistRef::Dyn(d) => d.sample(mix, rng).map(|w| (w, d.pdf(mix, w))),
+        }
+    }
+
+    #[inline]
+    fn pdf(self, mix: &ChannelMix, wi: Vec3) -> f32 {
+        match self {
+            DistRef::Raster(g) => g.pdf(mix, wi),
+            DistRef::Dyn(d) => d.pdf(mix, wi),
+        }
+    }
 }
 
 /// Per-thread state of the sampler, reused from vertex to vertex.
@@ -157,11 +186,13 @@ impl SamplerState<'_> {
         !matches!(self.prepared, Prepared::Bsdf)
     }
 
-    fn distribution(&self) -> Option<&dyn GuideDistribution> {
+    fn distribution(&self) -> Option<DistRef<'_>> {
         match &self.prepared {
             Prepared::Bsdf => None,
-            Prepared::Cached(d) => Some(*d),
-            Prepared::Owned(d) => Some(d.as_ref()),
+            Prepared::Cached(d) => Some(DistRef::Dyn(*d)),
+            Prepared::Region(RegionDistribution::Raster(g)) => Some(DistRef::Raster(g)),
+            Prepared::Region(RegionDistribution::Boxed(d)) => Some(DistRef::Dyn(d.as_ref())),
+            Prepared::Owned(d) => Some(DistRef::Dyn(d.as_ref())),
         }
     }
 }
@@ -212,11 +243,11 @@ impl<'a> GuidedSampler<'a> {
             GuideSource::Cached(cache) => {
                 if let Some((i, dist)) = cache
                     .lookup_index(at.p, at.side_normal())
-                    .and_then(|i| Some((i, cache.regions()[i as usize].distribution.as_deref()?)))
+                    .and_then(|i| Some((i, cache.regions()[i as usize].distribution.as_ref()?)))
                 {
-                    state.mix = ChannelMix::new(at.channel_factor(), dist.channel_totals());
+                    state.mix = ChannelMix::new(at.channel_factor(), dist.get().channel_totals());
                     if state.mix.is_some() {
-                        state.prepared = Prepared::Cached(dist);
+                        state.prepared = Prepared::Region(dist);
                         state.region = Some(i);
                         state.p_bsdf = self.p_bsdf_in(i);
                     }
@@ -333,15 +364,16 @@ impl<'a> GuidedSampler<'a> {
             });
         };
         let p = state.p_bsdf;
-        let wi = if rng.uniform() < p {
-            at.bsdf
+        let (wi, guide_pdf) = if rng.uniform() < p {
+            let wi = at
+                .bsdf
                 .sample_with::<F>(at.wo, rng.uniform(), rng.uniform2(), at.mode)?
-                .wi
+                .wi;
+            (wi, dist.pdf(&mix, wi))
         } else {
-            dist.sample(&mix, rng)?
+            dist.sample_with_pdf(&mix, rng)?
         };
         let bsdf_pdf = at.bsdf.pdf_with::<F>(at.wo, wi);
-        let guide_pdf = dist.pdf(&mix, wi);
         let pdf_w = p * bsdf_pdf + (1.0 - p) * guide_pdf;
         if !(pdf_w > 0.0 && pdf_w.is_finite()) {
             return None;
@@ -375,7 +407,7 @@ impl<'a> GuidedSampler<'a> {
         &self,
         at: &ScatterPoint,
         state: &SamplerState,
-        dist: &dyn GuideDistribution,
+        dist: DistRef,
         mix: &ChannelMix,
         wi: Vec3,
     ) -> f32 {
@@ -410,7 +442,8 @@ impl<'a> GuidedSampler<'a> {
                     Some(Region {
                         distribution: Some(d),
                         ..
-                    }) => ChannelMix::new(white, d.channel_totals()).map(|mix| d.pdf(&mix, wi)),
+                    }) => ChannelMix::new(white, d.get().channel_totals())
+                        .map(|mix| d.get().pdf(&mix, wi)),
                     _ => None,
                 }
             }
