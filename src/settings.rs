@@ -231,6 +231,11 @@ pub struct GuideParams {
     /// Camera paths (path tracing, the combined image) learn the probability of sampling the
     /// BSDF per region of the guide cache from earlier passes (`src/guide/selection.rs`).
     pub learn_p_bsdf: bool,
+    /// Russian roulette reads the guide cache's estimate of what a path would still gather
+    /// (its region's particle density times the path's throughput and the surface's
+    /// albedo) against that estimate at the path's first vertex, instead of the throughput
+    /// alone (`integrators/src/walk.rs`, "Guided Russian roulette").
+    pub guided_rr: bool,
     pub radius_rule: RadiusRule,
     /// Side of the classic sampler's grid per hemisphere (Jensen 1995).
     #[serde(rename = "grid")]
@@ -273,6 +278,7 @@ impl Default for GuideParams {
             k_r: 6.0,
             p_bsdf: 0.5,
             learn_p_bsdf: false,
+            guided_rr: true,
             radius_rule: RadiusRule::SolidAngle,
             grid_side: 8,
             cache: true,

@@ -1175,3 +1175,69 @@ fn every_drawn_direction_has_positive_guide_density() {
         assert_eq!(zero, 0, "trial {trial} grid: draws in empty cells");
     }
 }
+
+/// A cached region's particle density (`Region::density`, what guided Russian roulette
+/// reads) estimates the weight per unit area: particles spread uniformly over a unit square
+/// with a known total give `Σ w / (π r²)` over the disc holding a region's particles. Its
+/// relative standard deviation is about `1/sqrt(k)` for `k` particles (a k-nearest density
+/// estimate); every interior region must lie within 5 of those and their median (the regions
+/// share particles, so the median is no better than one region) within 3.
+#[test]
+fn cached_regions_estimate_the_particle_density() {
+    use footprint::guide::cache::{GuideCache, Seed};
+    use footprint::guide::particle_map::ParticleInput;
+    let mut rng = Rng::new(8, 8, 8);
+    let n = 40_000;
+    let w = Rgb::new(2.0, 1.0, 0.5) / n as f32;
+    let particles: Vec<ParticleInput> = (0..n)
+        .map(|_| ParticleInput {
+            position: Vec3::new(rng.uniform(), rng.uniform(), 0.0),
+            dir: (Vec3::Z + 0.5 * sample_uniform_sphere(rng.uniform2())).normalize(),
+            normal: Vec3::Z,
+            weight: w,
+            depth: 2,
+            specular_chain: false,
+        })
+        .collect();
+    let map = ParticleMap::build(MapKind::Photons, &particles);
+    // Seeds in the middle, so that every region's disc lies inside the square.
+    let seeds: Vec<Seed> = (0..400)
+        .map(|_| Seed {
+            position: Vec3::new(0.3 + 0.4 * rng.uniform(), 0.3 + 0.4 * rng.uniform(), 0.0),
+            normal: Vec3::Z,
+        })
+        .collect();
+    let params = GuideParams {
+        region_seeds: 40,
+        ..GuideParams::default()
+    };
+    let cache = GuideCache::build(&map, &FootprintGuide, &seeds, &params, 0.2);
+    let expected = w * n as f32; // per unit area: the square's area is 1
+    let mut ratios = Vec::new();
+    for r in cache.regions().iter().filter(|r| r.distribution.is_some()) {
+        let sd = 1.0 / (r.particles as f32).sqrt();
+        let ratio = r.density / expected;
+        // One colour: every channel is the same ratio.
+        assert!((ratio.x - ratio.z).abs() < 1e-4 && (ratio.x - ratio.y).abs() < 1e-4);
+        assert!(
+            (ratio.x - 1.0).abs() < 5.0 * sd,
+            "region at {:?}: density {:?} against {expected:?} ({} particles)",
+            r.centre,
+            r.density,
+            r.particles
+        );
+        ratios.push((ratio.x, sd));
+    }
+    assert!(
+        ratios.len() >= 5,
+        "{} regions: too few to test",
+        ratios.len()
+    );
+    ratios.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let (median, sd) = ratios[ratios.len() / 2];
+    eprintln!(
+        "{} regions, median density ratio {median:.4} (sd {sd:.4})",
+        ratios.len()
+    );
+    assert!((median - 1.0).abs() < 3.0 * sd, "median ratio {median}");
+}

@@ -22,6 +22,7 @@
 //! marked as not guiding (the fallback decision is cached too). Images do not depend on
 //! the thread count: regions are built independently, without random numbers.
 
+use crate::Rgb;
 use crate::guide::grid::GridDistribution;
 use crate::guide::particle_map::{ParticleMap, normal_bucket};
 use crate::guide::table::DirectionTable;
@@ -45,6 +46,11 @@ pub struct Region {
     pub centre: Vec3,
     pub normal: Vec3,
     pub particles: u32,
+    /// What the map says arrives per unit area in the region: the weights of the particles
+    /// the distribution was built from over the disc that holds them, `Σ w_p / (π r²)`
+    /// (irradiance for the photon map, importance per m² for the importance map). Guided
+    /// Russian roulette reads it (`integrators/src/walk.rs`).
+    pub density: Rgb,
     pub distribution: Option<RegionDistribution>,
     /// The distribution tabulated for the combined image's MIS weights (`None`: they read
     /// the exact density).
@@ -328,6 +334,7 @@ fn build_region(
         centre: job.centre,
         normal: job.normal,
         particles: 0,
+        density: Rgb::ZERO,
         distribution: None,
         table: None,
     };
@@ -362,6 +369,11 @@ fn build_region(
         return out;
     }
     out.particles = particles.len() as u32;
+    let disc = std::f32::consts::PI * neighbors[keep - 1].dist2;
+    let density = particles.iter().map(|p| p.weight).sum::<Rgb>() / disc;
+    if crate::math::is_valid_rgb(density) {
+        out.density = density;
+    }
     let frame = Frame::from_z(job.normal);
     out.distribution = guide
         .build(&frame, &particles, params)

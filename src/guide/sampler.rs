@@ -165,6 +165,8 @@ pub struct SamplerState<'a> {
     /// there (both set by `prepare`).
     region: Option<u32>,
     p_bsdf: f32,
+    /// The region's [`Region::density`] (set by `prepare` where a cached region guides).
+    density: Option<Rgb>,
     neighbors: Vec<Neighbor>,
     particles: Vec<GuideParticle>,
     /// Scattering events prepared at guiding surfaces.
@@ -181,6 +183,12 @@ pub struct SamplerState<'a> {
 }
 
 impl SamplerState<'_> {
+    /// What the other pass's map says arrives per unit area at the current vertex (its
+    /// cached region's [`Region::density`]), where a cached region guides it.
+    pub fn region_density(&self) -> Option<Rgb> {
+        self.density
+    }
+
     /// True when the current vertex is guided.
     pub fn guided(&self) -> bool {
         !matches!(self.prepared, Prepared::Bsdf)
@@ -231,6 +239,7 @@ impl<'a> GuidedSampler<'a> {
         state.prepared = Prepared::Bsdf;
         state.mix = None;
         state.region = None;
+        state.density = None;
         state.p_bsdf = self.params.p_bsdf;
         if matches!(self.source, GuideSource::Bsdf)
             || !guides_at(&at.bsdf.lobes, self.soft_glossy_max)
@@ -249,6 +258,7 @@ impl<'a> GuidedSampler<'a> {
                     if state.mix.is_some() {
                         state.prepared = Prepared::Region(dist);
                         state.region = Some(i);
+                        state.density = Some(cache.regions()[i as usize].density);
                         state.p_bsdf = self.p_bsdf_in(i);
                     }
                 }
