@@ -1216,14 +1216,15 @@ fn cached_regions_estimate_the_particle_density() {
     let mut ratios = Vec::new();
     for r in cache.regions().iter().filter(|r| r.distribution.is_some()) {
         let sd = 1.0 / (r.particles as f32).sqrt();
-        let ratio = r.density / expected;
+        let density = r.density.expect("a finite density");
+        let ratio = density / expected;
         // One colour: every channel is the same ratio.
         assert!((ratio.x - ratio.z).abs() < 1e-4 && (ratio.x - ratio.y).abs() < 1e-4);
         assert!(
             (ratio.x - 1.0).abs() < 5.0 * sd,
             "region at {:?}: density {:?} against {expected:?} ({} particles)",
             r.centre,
-            r.density,
+            density,
             r.particles
         );
         ratios.push((ratio.x, sd));

@@ -49,8 +49,9 @@ pub struct Region {
     /// What the map says arrives per unit area in the region: the weights of the particles
     /// the distribution was built from over the disc that holds them, `Σ w_p / (π r²)`
     /// (irradiance for the photon map, importance per m² for the importance map). Guided
-    /// Russian roulette reads it (`integrators/src/walk.rs`).
-    pub density: Rgb,
+    /// Russian roulette reads it (`integrators/src/walk.rs`). `None` where it is not finite
+    /// (particles all at one point): those vertices keep the throughput rule.
+    pub density: Option<Rgb>,
     pub distribution: Option<RegionDistribution>,
     /// The distribution tabulated for the combined image's MIS weights (`None`: they read
     /// the exact density).
@@ -58,8 +59,9 @@ pub struct Region {
 }
 
 /// A region's distribution. A raster (what footprints and the grid build for the cache) is
-/// held inline, so that a guided event reaches its cells from the region without a
-/// pointer chase or a dynamic call; any other guide's distribution stays boxed.
+/// held inline in the region, so that a guided event reaches its cell arrays from the
+/// region directly (no box holding the distribution, no dynamic call); any other guide's
+/// distribution stays boxed.
 pub enum RegionDistribution {
     Raster(GridDistribution),
     Boxed(Box<dyn GuideDistribution>),
@@ -334,7 +336,7 @@ fn build_region(
         centre: job.centre,
         normal: job.normal,
         particles: 0,
-        density: Rgb::ZERO,
+        density: None,
         distribution: None,
         table: None,
     };
@@ -371,9 +373,7 @@ fn build_region(
     out.particles = particles.len() as u32;
     let disc = std::f32::consts::PI * neighbors[keep - 1].dist2;
     let density = particles.iter().map(|p| p.weight).sum::<Rgb>() / disc;
-    if crate::math::is_valid_rgb(density) {
-        out.density = density;
-    }
+    out.density = crate::math::is_valid_rgb(density).then_some(density);
     let frame = Frame::from_z(job.normal);
     out.distribution = guide
         .build(&frame, &particles, params)

@@ -8,7 +8,7 @@
 //! `2π / side²`, a direction uniform in the cell's square is uniform in solid angle, and the
 //! pdf is the cell's share of the contributions over the cell's solid angle. With
 //! per-channel weights each channel has its own cell probabilities and the cell choice is a
-//! mixture over channels ([`ChannelMix`]); a cell's probability is quantised to 1/65535 and
+//! mixture over channels ([`ChannelMix`]); a cell's probability is quantised to multiples of 2^-15 and
 //! `sample` and `pdf` read the same integers, so they agree exactly (see
 //! [`GridDistribution`]).
 
@@ -27,7 +27,7 @@ use glam::{Vec2, Vec3};
 /// [`QUANTUM`] (largest remainders), stored per cell with the three channels side by
 /// side, so that `pdf` reads one cell's six bytes. Sampling searches the cumulative sums
 /// of the channel's *rows* (the `side` cells of one `φ` band of a hemisphere: 2·side
-/// numbers, one cache line at side 16) and then walks the row's cells. Both read the
+/// numbers, 64 bytes at side 16) and then walks the row's cells. Both read the
 /// same integers, so sample and pdf agree exactly.
 #[derive(Clone, Debug)]
 pub struct GridDistribution {
@@ -42,8 +42,10 @@ pub struct GridDistribution {
     totals: Rgb,
 }
 
-/// The denominator of the quantised cell probabilities.
-pub const QUANTUM: u32 = u16::MAX as u32;
+/// The denominator of the quantised cell probabilities: a power of two, so that a uniform
+/// number `u` (a multiple of 2^-24) picks quantum `floor(u · QUANTUM)` with probability
+/// exactly `1 / QUANTUM` and sampling draws exactly the probabilities `pdf` reads.
+pub const QUANTUM: u32 = 1 << 15;
 
 impl GridDistribution {
     /// `(u, v)` in the unit square of a local direction's hemisphere.
@@ -146,6 +148,7 @@ impl GridDistribution {
     pub fn prob(&self, ch: usize, cell: usize) -> f32 {
         self.counts[cell][ch] as f32 / QUANTUM as f32
     }
+
     /// A direction drawn as [`GuideDistribution::sample`] draws it, with the cell `pdf`
     /// puts it in when that is the cell it was drawn in (all but a rounding case).
     #[inline]
@@ -260,6 +263,7 @@ impl GuideDistribution for GridDistribution {
     fn pdf(&self, mix: &ChannelMix, wi: Vec3) -> f32 {
         self.cell_pdf(mix, self.cell_of(self.frame.to_local(wi)))
     }
+
     fn as_any(&self) -> &dyn std::any::Any {
         self
     }

@@ -124,7 +124,8 @@ pub enum GuideSource<'a> {
 enum Prepared<'a> {
     #[default]
     Bsdf,
-    Cached(&'a dyn GuideDistribution),
+    /// [`GuideSource::Fixed`]'s distribution.
+    Fixed(&'a dyn GuideDistribution),
     Region(&'a RegionDistribution),
     Owned(Box<dyn GuideDistribution>),
 }
@@ -197,7 +198,7 @@ impl SamplerState<'_> {
     fn distribution(&self) -> Option<DistRef<'_>> {
         match &self.prepared {
             Prepared::Bsdf => None,
-            Prepared::Cached(d) => Some(DistRef::Dyn(*d)),
+            Prepared::Fixed(d) => Some(DistRef::Dyn(*d)),
             Prepared::Region(RegionDistribution::Raster(g)) => Some(DistRef::Raster(g)),
             Prepared::Region(RegionDistribution::Boxed(d)) => Some(DistRef::Dyn(d.as_ref())),
             Prepared::Owned(d) => Some(DistRef::Dyn(d.as_ref())),
@@ -258,7 +259,7 @@ impl<'a> GuidedSampler<'a> {
                     if state.mix.is_some() {
                         state.prepared = Prepared::Region(dist);
                         state.region = Some(i);
-                        state.density = Some(cache.regions()[i as usize].density);
+                        state.density = cache.regions()[i as usize].density;
                         state.p_bsdf = self.p_bsdf_in(i);
                     }
                 }
@@ -266,7 +267,7 @@ impl<'a> GuidedSampler<'a> {
             GuideSource::Fixed(dist) => {
                 state.mix = ChannelMix::new(at.channel_factor(), dist.channel_totals());
                 if state.mix.is_some() {
-                    state.prepared = Prepared::Cached(*dist);
+                    state.prepared = Prepared::Fixed(*dist);
                 }
             }
             GuideSource::PerEvent {
