@@ -59,11 +59,6 @@ pub fn survival_probability(beta: Rgb, beta0_max: f32) -> f32 {
     (beta.max_element() / beta0_max).clamp(0.05, 1.0)
 }
 
-/// Guided Russian roulette keeps a path for sure while what it is expected to gather is at
-/// least this share of what its first estimated vertex expected (measured on Veach Ajar
-/// against 0.3, 0.6, 1.5 and 3: docs/method.md).
-pub const GUIDED_RR_SHARE: f32 = 1.0;
-
 /// The least survival probability of guided Russian roulette. The rule acts at every guided
 /// vertex, so it need not cut hard: 0.05 (the throughput rule's floor) left survivors with
 /// weights up to 20x and was worse on desk and door than 0.25, 0.4 and 0.6; 0.8 costs more
@@ -71,10 +66,12 @@ pub const GUIDED_RR_SHARE: f32 = 1.0;
 pub const GUIDED_RR_MIN_SURVIVAL: f32 = 0.6;
 
 /// The guided rule: survival probability of a path expected to gather `c_v` from here on,
-/// whose first estimated vertex expected `c_ref`.
+/// whose first estimated vertex expected `c_ref`. A path is kept for sure while `c_v` is at
+/// least `c_ref` (other shares of `c_ref`, 0.3 to 3, were worse on Veach Ajar:
+/// docs/method.md).
 #[inline]
 pub fn guided_survival_probability(c_v: f32, c_ref: f32) -> f32 {
-    (c_v / (GUIDED_RR_SHARE * c_ref)).clamp(GUIDED_RR_MIN_SURVIVAL, 1.0)
+    (c_v / c_ref).clamp(GUIDED_RR_MIN_SURVIVAL, 1.0)
 }
 
 /// A surface vertex of a walk.
