@@ -236,6 +236,11 @@ pub struct GuideParams {
     /// albedo) against that estimate at the path's first vertex, instead of the throughput
     /// alone (`integrators/src/walk.rs`, "Guided Russian roulette").
     pub guided_rr: bool,
+    /// Guided splitting (with `guided_rr`; path tracing and light tracing, not the combined
+    /// image): a path expected to gather `r > 1` times what its first estimated vertex did
+    /// is split into `r` branches in expectation, at most this many, each with its share of
+    /// the throughput (`integrators/src/walk.rs`); 1 never splits.
+    pub guided_split: u32,
     pub radius_rule: RadiusRule,
     /// Side of the classic sampler's grid per hemisphere (Jensen 1995).
     #[serde(rename = "grid")]
@@ -279,6 +284,7 @@ impl Default for GuideParams {
             p_bsdf: 0.5,
             learn_p_bsdf: false,
             guided_rr: true,
+            guided_split: 4,
             radius_rule: RadiusRule::SolidAngle,
             grid_side: 8,
             cache: true,

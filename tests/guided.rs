@@ -254,6 +254,60 @@ fn guided_russian_roulette_acts_and_either_rule_agrees() {
     );
 }
 
+/// Guided splitting (`guided_split`; the tests above run the default, 4 branches at most):
+/// it really acts (the same seed gives another image, and more vertices, than without it),
+/// and the guided pairs that split agree with unguided path tracing without it too, on
+/// cornell and door.
+#[test]
+fn guided_splitting_acts_and_either_setting_agrees() {
+    let scene = small("cornell", 24, 24, 20_000);
+    let split = |n: u32| GuideParams {
+        guided_split: n,
+        ..Default::default()
+    };
+    let default = GuideParams::default().guided_split;
+    assert!(
+        default > 1,
+        "the default splits: the test below compares it with 1"
+    );
+    let image = |n: u32| {
+        let o = RenderOptions {
+            guide_params: split(n),
+            ..opts("pt-footprint", 4, 6, 3)
+        };
+        render(&scene, &o, |_| {})
+    };
+    let (on, off) = (image(default), image(1));
+    let changed = on
+        .image
+        .pixels
+        .iter()
+        .zip(&off.image.pixels)
+        .filter(|(a, b)| a != b)
+        .count();
+    let (v_on, v_off) = (on.camera_guide.vertices, off.camera_guide.vertices);
+    eprintln!(
+        "{changed} of {} pixels differ; vertices {v_off} without splitting, {v_on} with",
+        on.image.pixels.len()
+    );
+    assert!(
+        changed * 4 > on.image.pixels.len(),
+        "splitting changed only {changed} pixels"
+    );
+    assert!(v_on > v_off, "splitting traced no more vertices");
+    let guided = ["pt-footprint", "lt-footprint"];
+    agreement(&scene, 3, 20, 2, 6, &guided, &split(1));
+    agreement(
+        &small("door", 24, 24, 40_000),
+        2,
+        20,
+        4,
+        8,
+        &guided,
+        &split(1),
+    );
+}
+
 /// The paper's per-event preparation (no guide cache) stays correct.
 #[test]
 fn per_event_guiding_agrees_with_the_reference_on_cornell() {
@@ -295,6 +349,8 @@ fn guided_images_do_not_depend_on_the_thread_count() {
     // Learning needs passes before it acts (the learned case is checked to have learned).
     for (m, params, spp) in [
         ("combined-footprint", GuideParams::default(), 2),
+        // Light paths split (the default): each branch draws its own stream.
+        ("lt-footprint", GuideParams::default(), 2),
         ("combined-grid", GuideParams::default(), 2),
         ("combined-footprint", per_event(), 2),
         // 128 passes: guided Russian roulette (the default) ends paths sooner, so regions

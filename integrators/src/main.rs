@@ -115,6 +115,12 @@ struct GuideParamArgs {
     /// paths only [default: guide.guided_rr, else on]
     #[arg(long, value_parser = ["on", "off"])]
     guided_rr: Option<String>,
+    /// Guided splitting (pt, lt; not the combined image): a guided path expected to gather
+    /// r > 1 times what its first estimated vertex did is split into r branches (in
+    /// expectation), at most this many; 1 never splits; needs --guided-rr on [default:
+    /// guide.guided_split, else 4]
+    #[arg(long)]
+    guided_split: Option<u32>,
     /// Side of the per-hemisphere table of each cached region's density that those guided
     /// MIS weights read when footprints are sampled from their caps (--raster 0); 0 reads
     /// the exact density (slower, the same image in expectation)
@@ -168,6 +174,9 @@ impl GuideParamArgs {
         }
         if let Some(v) = &self.guided_rr {
             p.guided_rr = v == "on";
+        }
+        if let Some(v) = self.guided_split {
+            p.guided_split = v;
         }
         if let Some(v) = self.mis_table {
             p.mis_table = v;
@@ -333,7 +342,7 @@ enum Command {
         /// [default: pt and lt with each guide, and combined-footprint]
         #[arg(long, value_delimiter = ',')]
         methods: Option<Vec<String>>,
-        /// Parameter sweep NAME=V1,V2,... over k_p, k_r, p_bsdf, learn_p_bsdf (0, 1), guided_rr (0, 1), k_g, grid, region_particles,
+        /// Parameter sweep NAME=V1,V2,... over k_p, k_r, p_bsdf, learn_p_bsdf (0, 1), guided_rr (0, 1), guided_split, k_g, grid, region_particles,
         /// region_seeds, min_depth, mis_table, raster, photons, importons, map_rounds,
         /// map_grow (0, 1) or sequence (sobol, independent): every method is run once per value [default methods for a sweep: pt-footprint,lt-footprint]
         #[arg(long)]
@@ -935,6 +944,7 @@ fn compare_variants(
                 "p_bsdf" => opts.guide_params.p_bsdf = num as f32,
                 "learn_p_bsdf" => opts.guide_params.learn_p_bsdf = num != 0.0,
                 "guided_rr" => opts.guide_params.guided_rr = num != 0.0,
+                "guided_split" => opts.guide_params.guided_split = num as u32,
                 "k_g" => opts.guide_params.k_g_side = num as usize,
                 "grid" => opts.guide_params.grid_side = num as usize,
                 "photons" => maps.photons = num as usize,
@@ -947,7 +957,7 @@ fn compare_variants(
                 "map_rounds" => maps.rounds = num as u32,
                 "map_grow" => maps.grow = num != 0.0,
                 other => bail!(
-                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, learn_p_bsdf (0 or 1), guided_rr (0 or 1), k_g, grid, region_particles, region_seeds, min_depth, mis_table, raster, photons, importons, map_rounds, map_grow (0 or 1) or sequence)"
+                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, learn_p_bsdf (0 or 1), guided_rr (0 or 1), guided_split, k_g, grid, region_particles, region_seeds, min_depth, mis_table, raster, photons, importons, map_rounds, map_grow (0 or 1) or sequence)"
                 ),
             }
             out.push(make(
@@ -1200,7 +1210,7 @@ fn render_command(
         (
             "footprint/guide_params".to_string(),
             format!(
-                "k_p={} k_g={}x{} k_r={} p_bsdf={} learn_p_bsdf={} guided_rr={} radius_rule={} grid={}x{} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} mis_table={} raster={} photons={} importons={} max_dist={}",
+                "k_p={} k_g={}x{} k_r={} p_bsdf={} learn_p_bsdf={} guided_rr={} guided_split={} radius_rule={} grid={}x{} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} mis_table={} raster={} photons={} importons={} max_dist={}",
                 p.k_p,
                 p.k_g_side,
                 p.k_g_side,
@@ -1208,6 +1218,7 @@ fn render_command(
                 p.p_bsdf,
                 if p.learn_p_bsdf { "on" } else { "off" },
                 if p.guided_rr { "on" } else { "off" },
+                p.guided_split,
                 p.radius_rule.name(),
                 p.grid_side,
                 p.grid_side,

@@ -188,6 +188,7 @@ impl Recent {
 }
 
 /// The running densities of a camera subpath `x0 (camera), x1, ..., xj`.
+#[derive(Clone, Copy)]
 pub struct CameraMis<'d> {
     d: &'d Densities<'d, 'd>,
     /// Product of the camera-direction area densities up to `xj`.
@@ -334,6 +335,7 @@ impl<'d> CameraMis<'d> {
 }
 
 /// The running densities of a light subpath `y0 (light point), y1, ..., yj`.
+#[derive(Clone, Copy)]
 pub struct LightMis<'d> {
     d: &'d Densities<'d, 'd>,
     /// Light-direction area densities, the light position's included.

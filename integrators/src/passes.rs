@@ -162,6 +162,11 @@ impl<F: Features> Visitor for Storing<'_, F> {
     fn scattered(&mut self, _v: &Vertex, s: &DirectionSample) {
         self.specular_chain &= s.delta;
     }
+
+    // Particle paths are not split (a map's particles are independent paths).
+    type Branch = ();
+    fn branch(&self) {}
+    fn restore(&mut self, _b: ()) {}
 }
 
 /// Traces paths `paths` (indices into the pass's streams) in chunks of [`CHUNK`].

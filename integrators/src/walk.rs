@@ -35,6 +35,15 @@
 //! `rr_depth`), `C_ref` the first such value of the path (adjoint-driven Russian roulette
 //! without splitting; docs/method.md). β is the real throughput here: the estimate already
 //! says where a guided direction leads.
+//!
+//! **Guided splitting** (`GuideParams::guided_split`, the other half of adjoint-driven
+//! Russian roulette): where `C_v / C_ref = r > 1` the walk scatters `r` times in expectation
+//! (rounded at random, at most `guided_split`), each branch with `1 / n` of the throughput
+//! and its own direction, and runs each branch's rest of the path. Next-event estimation and
+//! what the visitor found at the vertex count once; the visitor's running MIS quantities are
+//! saved before the first branch and restored before each further one
+//! ([`Visitor::branch`]); the first branch keeps the path's random stream, the others draw
+//! independent ones. Unbiased for any count (each count's mean of branches is).
 
 use footprint::Rgb;
 use footprint::bsdf::{Bsdf, TransportMode};
@@ -142,6 +151,17 @@ pub trait Visitor {
     }
     /// A direction was sampled at `v`.
     fn scattered(&mut self, _v: &Vertex, _s: &DirectionSample) {}
+
+    /// The part of the visitor's state that belongs to one path (its running MIS
+    /// quantities): saved where the walk splits, and restored before each further branch.
+    /// What the visitor adds up (radiance, splats) is shared by the branches.
+    type Branch: Copy;
+    /// Whether the walk may split here (guided splitting; off unless a visitor says so).
+    fn splits(&self) -> bool {
+        false
+    }
+    fn branch(&self) -> Self::Branch;
+    fn restore(&mut self, b: Self::Branch);
 }
 
 /// Where a walk starts and how far it goes.
@@ -170,35 +190,68 @@ pub fn walk<'a, V: Visitor>(
     rng: &mut Rng,
     visitor: &mut V,
 ) {
-    let beta0_max = start.beta0.max_element().max(f32::MIN_POSITIVE);
-    let mut origin = start.origin;
-    let mut dir = start.dir;
-    let mut beta = start.beta;
-    // The throughput Russian roulette reads: BSDF sampling's weights, not the guide's.
-    let mut beta_rr = start.beta;
-    let mut from = Arrival {
-        prev_p: start.origin,
-        pdf_w: 0.0,
-        delta: true,
+    let path = PathState {
+        origin: start.origin,
+        dir: start.dir,
+        beta: start.beta,
+        beta_rr: start.beta,
+        from: Arrival {
+            prev_p: start.origin,
+            pdf_w: 0.0,
+            delta: true,
+        },
+        expected_ref: 0.0,
+        depth: 1,
     };
-    // Guided Russian roulette: what the first estimated vertex expected the path to gather.
+    walk_from(scene, start, sampler, state, rng, visitor, path);
+}
+
+/// Where a walk (or one branch of a split walk) stands before its next segment.
+#[derive(Clone, Copy)]
+struct PathState {
+    origin: Vec3,
+    dir: Vec3,
+    beta: Rgb,
+    /// The throughput Russian roulette reads: BSDF sampling's weights, not the guide's.
+    beta_rr: Rgb,
+    from: Arrival,
+    /// Guided Russian roulette: what the first estimated vertex expected the path to gather.
+    expected_ref: f32,
+    /// Depth of the vertex the next segment reaches.
+    depth: u32,
+}
+
+/// Random streams of the branches of a split after the first (which keeps the path's own).
+const DOMAIN_SPLIT: u64 = 0x5b117;
+
+/// The walk's loop from `p`; a split runs each branch's rest in a call of its own.
+fn walk_from<'a, V: Visitor>(
+    scene: &Scene,
+    start: &Start,
+    sampler: &GuidedSampler<'a>,
+    state: &mut SamplerState<'a>,
+    rng: &mut Rng,
+    visitor: &mut V,
+    mut p: PathState,
+) {
+    let beta0_max = start.beta0.max_element().max(f32::MIN_POSITIVE);
     let guided_rr = sampler.params.guided_rr;
-    let mut expected_ref = 0.0f32;
-    for depth in 1..=start.max_vertex_depth {
-        let Some(hit) = scene.intersect_with::<V::F>(origin, dir, f32::INFINITY) else {
+    let split_max = sampler.params.guided_split.max(1);
+    for depth in p.depth..=start.max_vertex_depth {
+        let Some(hit) = scene.intersect_with::<V::F>(p.origin, p.dir, f32::INFINITY) else {
             state.escapes += 1;
-            visitor.escaped(dir, beta, depth, &from);
+            visitor.escaped(p.dir, p.beta, depth, &p.from);
             return;
         };
         state.vertices += 1;
         let v = Vertex {
             bsdf: scene.bsdf_with::<V::F>(&hit),
             hit,
-            wo: -dir,
+            wo: -p.dir,
             depth,
-            beta,
+            beta: p.beta,
         };
-        visitor.reached(&v, &from);
+        visitor.reached(&v, &p.from);
         if depth == start.max_vertex_depth {
             return;
         }
@@ -209,51 +262,140 @@ pub fn walk<'a, V: Visitor>(
             bsdf: &v.bsdf,
             wo: v.wo,
             mode: start.mode,
-            throughput: beta,
+            throughput: p.beta,
         };
         sampler.prepare(&at, state);
         // What continuing from here is expected to gather, where the guide cache knows:
         // `lum(β · albedo · E) / π` for the region's particle density `E`.
         let expected = match state.region_density() {
             Some(e) if guided_rr => {
-                let c = luminance(beta * v.bsdf.lobes.colour() * e) * std::f32::consts::FRAC_1_PI;
-                if expected_ref == 0.0 && c > 0.0 && c.is_finite() {
-                    expected_ref = c;
+                let c = luminance(p.beta * v.bsdf.lobes.colour() * e) * std::f32::consts::FRAC_1_PI;
+                if p.expected_ref == 0.0 && c > 0.0 && c.is_finite() {
+                    p.expected_ref = c;
                 }
-                (expected_ref > 0.0 && c.is_finite()).then_some(c)
+                (p.expected_ref > 0.0 && c.is_finite()).then_some(c)
             }
             _ => None,
         };
         rng.start_vertex(depth);
         visitor.before_scatter(&v, &at, sampler, state, rng);
-        let Some(s) = sampler.sample_with::<V::F>(&at, state, rng) else {
-            return;
+
+        // ---- Guided splitting ----
+        let branches = match expected {
+            Some(c) if split_max > 1 && c > p.expected_ref && visitor.splits() => {
+                split_count(c / p.expected_ref, split_max, rng.next_u64())
+            }
+            _ => 1,
         };
-        beta *= s.weight;
-        beta_rr *= s.rr_weight;
-        if !beta.is_finite() || beta.max_element() <= 0.0 {
+        if branches > 1 {
+            let saved = visitor.branch();
+            let seed = rng.next_u64();
+            let share = 1.0 / branches as f32;
+            for b in 0..branches {
+                let mut own;
+                let r = if b == 0 {
+                    &mut *rng
+                } else {
+                    // The earlier branches' vertices prepared the sampler for theirs.
+                    sampler.prepare(&at, state);
+                    visitor.restore(saved);
+                    own = Rng::new(seed, DOMAIN_SPLIT, b as u64);
+                    &mut own
+                };
+                let mut q = p;
+                if scatter(sampler, state, r, visitor, &v, &at, &mut q, share) {
+                    q.depth = depth + 1;
+                    walk_from(scene, start, sampler, state, r, visitor, q);
+                }
+            }
             return;
         }
-        visitor.scattered(&v, &s);
-        from = Arrival {
-            prev_p: v.hit.p,
-            pdf_w: s.pdf_w,
-            delta: s.delta,
-        };
+        if !scatter(sampler, state, rng, visitor, &v, &at, &mut p, 1.0) {
+            return;
+        }
 
         // ---- Russian roulette ----
         let q = match expected {
-            Some(c) => Some(guided_survival_probability(c, expected_ref)),
-            None => (depth >= start.rr_depth).then(|| survival_probability(beta_rr, beta0_max)),
+            Some(c) => Some(guided_survival_probability(c, p.expected_ref)),
+            None => (depth >= start.rr_depth).then(|| survival_probability(p.beta_rr, beta0_max)),
         };
         if let Some(q) = q {
             if rng.uniform() >= q {
                 return;
             }
-            beta /= q;
-            beta_rr /= q;
+            p.beta /= q;
+            p.beta_rr /= q;
         }
-        origin = spawn_origin(v.hit.p, v.hit.ng, s.wi);
-        dir = s.wi;
+    }
+}
+
+/// Samples the next direction at `v` and moves `p` along it with `share` of the
+/// throughput (one branch of `1 / share`); false when the path ends there.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn scatter<'a, V: Visitor>(
+    sampler: &GuidedSampler<'a>,
+    state: &mut SamplerState<'a>,
+    rng: &mut Rng,
+    visitor: &mut V,
+    v: &Vertex,
+    at: &ScatterPoint,
+    p: &mut PathState,
+    share: f32,
+) -> bool {
+    let Some(s) = sampler.sample_with::<V::F>(at, state, rng) else {
+        return false;
+    };
+    p.beta *= s.weight * share;
+    p.beta_rr *= s.rr_weight * share;
+    if !p.beta.is_finite() || p.beta.max_element() <= 0.0 {
+        return false;
+    }
+    visitor.scattered(v, &s);
+    p.from = Arrival {
+        prev_p: v.hit.p,
+        pdf_w: s.pdf_w,
+        delta: s.delta,
+    };
+    p.origin = spawn_origin(v.hit.p, v.hit.ng, s.wi);
+    p.dir = s.wi;
+    true
+}
+
+/// Branches of a guided split where a path is expected to gather `ratio` (> 1) times what
+/// its first estimated vertex did: `ratio` in expectation, rounded at random with the
+/// uniform bits `bits` (any count keeps the estimate unbiased: each branch carries
+/// `1 / count` of the throughput), at most `max`.
+#[inline]
+pub fn split_count(ratio: f32, max: u32, bits: u64) -> u32 {
+    let r = ratio.min(max as f32);
+    let whole = r.floor();
+    let u = (bits >> 40) as f32 * (1.0 / 16_777_216.0);
+    let n = whole as u32 + u32::from(u < r - whole);
+    n.clamp(1, max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::split_count;
+
+    /// Over evenly spread uniform bits the branch count averages the ratio (exactly, up to
+    /// the spread's step), stays within its two neighbouring integers, and keeps the cap.
+    #[test]
+    fn split_counts_average_the_ratio_and_keep_the_cap() {
+        let n = 4096u64;
+        // The uniform number (i + 0.5) / n in the 24 bits split_count reads.
+        let bits = |i: u64| (((2 * i + 1) << 24) / (2 * n)) << 40;
+        for ratio in [1.0f32, 1.3, 2.0, 2.75, 3.5] {
+            let counts: Vec<u32> = (0..n).map(|i| split_count(ratio, 8, bits(i))).collect();
+            let mean = counts.iter().sum::<u32>() as f64 / n as f64;
+            assert!(
+                (mean - ratio as f64).abs() < 2.0 / n as f64,
+                "{ratio}: mean {mean}"
+            );
+            let (lo, hi) = (ratio.floor() as u32, ratio.ceil() as u32);
+            assert!(counts.iter().all(|&c| c == lo || c == hi), "{ratio}");
+        }
+        assert!((0..n).all(|i| split_count(40.0, 4, bits(i)) == 4));
     }
 }

@@ -76,7 +76,7 @@ impl Integrator for LightTracing {
 }
 
 /// A second estimate a light path feeds, with its own weights for the same connections.
-pub trait LightShare {
+pub trait LightShare: Copy {
     /// Weight of the light point itself seen by the camera.
     fn light_seen(&self, scene: &Scene, to_camera: Vec3) -> f32;
     fn arrive(&mut self, light: &Light, v: &Vertex);
@@ -225,5 +225,18 @@ impl<W: LightShare, F: Features> Visitor for LightVisitor<'_, '_, W, F> {
         if self.share.is_some() {
             self.weights.scattered(v, s);
         }
+    }
+
+    // ---- Guided splitting: each branch starts from the same running weights ----
+    type Branch = W;
+    /// Not in the combined image (as camera paths, `path_tracing`).
+    fn splits(&self) -> bool {
+        self.share.is_none()
+    }
+    fn branch(&self) -> W {
+        self.weights
+    }
+    fn restore(&mut self, b: W) {
+        self.weights = b;
     }
 }
