@@ -113,21 +113,23 @@ fn check_scene(name: &str, guided: bool, params: &GuideParams) -> Vec<[f32; 3]> 
                 cm.scattered(depth, hit.p, hit.ng, &scene.bsdf(hit), path.delta[j]);
             }
         }
-        let w1 = cm.weight_nee(
-            &scene,
-            li as u32,
-            k - 1,
-            &bsdf_last,
-            last.p,
-            last.ng,
-            -last_dir,
-            &ls,
-        );
+        let w1 = cm
+            .nee(
+                &scene,
+                li as u32,
+                k - 1,
+                &bsdf_last,
+                last.p,
+                last.ng,
+                -last_dir,
+                &ls,
+            )
+            .weight();
         cm.scattered(k - 1, last.p, last.ng, &bsdf_last, false);
         let w0 = match ls.n {
             Some(n) => {
                 cm.arrive(&scene, k, ls.wi, ls.p, n);
-                cm.weight_light_hit(&scene, li as u32, k, -ls.wi, ls.p)
+                cm.light_hit(&scene, li as u32, k, -ls.wi, ls.p).weight()
             }
             None => 0.0, // a camera path cannot hit a point or spot light
         };
@@ -146,7 +148,9 @@ fn check_scene(name: &str, guided: bool, params: &GuideParams) -> Vec<[f32; 3]> 
                     break;
                 }
                 let to_cam = (scene.camera.position - hit.p).normalize();
-                wk = lm.weight_camera_connection(&scene, depth, &bsdf, hit.p, hit.ng, to_cam);
+                wk = lm
+                    .camera_connection(&scene, depth, &bsdf, hit.p, hit.ng, to_cam)
+                    .weight();
             } else {
                 // The light path leaves y_depth toward x_{j-1}: delta as the camera path's
                 // step there (a delta step is delta both ways).

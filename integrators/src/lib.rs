@@ -29,6 +29,7 @@ pub mod maps_file;
 pub mod merge;
 pub mod method;
 pub mod mis;
+pub mod moments;
 pub mod passes;
 pub mod render;
 pub mod scene_hash;

@@ -135,6 +135,50 @@ pub fn weight(own: f64, all: [f64; 3]) -> f32 {
     (o * o / sum) as f32
 }
 
+/// One path's densities under the three strategies (`p0` a camera path that hits the light,
+/// `p1` next-event estimation, `pk` light tracing), the strategy that made it, and the same
+/// path's densities under the unguided samplers (where a pilot tracks both,
+/// [`PilotMis`]; else `p`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Strategies {
+    pub p: [f64; 3],
+    pub own: usize,
+    pub unguided: [f64; 3],
+}
+
+impl Strategies {
+    /// No strategy: weight 0 (what a walk without a second estimate reports).
+    pub const NONE: Strategies = Strategies {
+        p: [0.0; 3],
+        own: 0,
+        unguided: [0.0; 3],
+    };
+
+    /// `p` made by strategy `own`, with no separate unguided densities.
+    pub fn new(p: [f64; 3], own: usize) -> Self {
+        Strategies {
+            p,
+            own,
+            unguided: p,
+        }
+    }
+
+    /// The power-heuristic weight of the strategy that made the path.
+    #[inline]
+    pub fn weight(&self) -> f32 {
+        weight(self.p[self.own], self.p)
+    }
+}
+
+/// Two trackers along one subpath: the samplers' densities (the weights) and the unguided
+/// ones (for `auto`'s pilot, which estimates unguided methods' second moments from guided
+/// paths, `crate::moments`).
+#[derive(Clone, Copy)]
+pub struct PilotMis<T> {
+    pub main: T,
+    pub unguided: T,
+}
+
 /// The unguided positional density of light `li` at one of its points: choice x area pdf.
 #[inline]
 pub fn light_pos_pdf(scene: &Scene, li: u32) -> f64 {
@@ -258,8 +302,9 @@ impl<'d> CameraMis<'d> {
         }
     }
 
-    /// Weight of emission from light `li` found at `xj = p` (`wo` back along the path).
-    pub fn weight_light_hit(&self, scene: &Scene, li: u32, depth: u32, wo: Vec3, p: Vec3) -> f32 {
+    /// The strategies of the path that found light `li`'s emission at `xj = p` (`wo` back
+    /// along the path).
+    pub fn light_hit(&self, scene: &Scene, li: u32, depth: u32, wo: Vec3, p: Vec3) -> Strategies {
         let light = &scene.lights[li as usize];
         let b0 = &self.recent.before[0];
         let p_l = light_pos_pdf(scene, li);
@@ -280,13 +325,13 @@ impl<'d> CameraMis<'d> {
             let emit = to_area(self.d.emission(light, p, n, wo) as f64, p, b0.p, b0.n);
             p_l * self.b_back * emit
         };
-        weight(p0, [p0, p1, pk])
+        Strategies::new([p0, p1, pk], 0)
     }
 
-    /// Weight of a next-event connection from `xj` (BSDF `bsdf`, `wo` back along the path)
-    /// to the light sample `ls` of light `li`.
+    /// The strategies of a next-event connection from `xj` (BSDF `bsdf`, `wo` back along
+    /// the path) to the light sample `ls` of light `li`.
     #[allow(clippy::too_many_arguments)]
-    pub fn weight_nee(
+    pub fn nee(
         &self,
         scene: &Scene,
         li: u32,
@@ -296,7 +341,7 @@ impl<'d> CameraMis<'d> {
         ng: Vec3,
         wo: Vec3,
         ls: &LightSample,
-    ) -> f32 {
+    ) -> Strategies {
         let light = &scene.lights[li as usize];
         let b0 = &self.recent.before[0];
         let p_l = light_pos_pdf(scene, li);
@@ -325,7 +370,7 @@ impl<'d> CameraMis<'d> {
             };
             p_l * self.b_back * back * emit
         };
-        weight(p1, [p0, p1, pk])
+        Strategies::new([p0, p1, pk], 1)
     }
 
     /// The path left `xj` by a direction sampled with `delta`.
@@ -374,8 +419,9 @@ impl<'d> LightMis<'d> {
         }
     }
 
-    /// Weight of the light point `y0` itself seen by the camera in direction `-to_camera`.
-    pub fn weight_light_seen(&self, scene: &Scene, to_camera: Vec3) -> f32 {
+    /// The strategies of the light point `y0` itself seen by the camera in direction
+    /// `-to_camera`.
+    pub fn light_seen(&self, scene: &Scene, to_camera: Vec3) -> Strategies {
         let cam = &scene.camera;
         let y0 = &self.recent.before[0];
         // k = 1: the camera path could hit an area light here, nothing else.
@@ -389,7 +435,7 @@ impl<'d> LightMis<'d> {
         } else {
             0.0
         };
-        weight(self.p_l, [p0, 0.0, self.p_l])
+        Strategies::new([p0, 0.0, self.p_l], 2)
     }
 
     /// The path arrived at `yj = p` (normal `ng`, `depth = j`) along `dir`.
@@ -430,10 +476,9 @@ impl<'d> LightMis<'d> {
         }
     }
 
-    /// Weight of the camera connection from `yj = p` (BSDF `bsdf`, normal `ng`, direction to
-    /// the camera `wi`).
-    #[allow(clippy::too_many_arguments)]
-    pub fn weight_camera_connection(
+    /// The strategies of the camera connection from `yj = p` (BSDF `bsdf`, normal `ng`,
+    /// direction to the camera `wi`).
+    pub fn camera_connection(
         &self,
         scene: &Scene,
         depth: u32,
@@ -441,7 +486,7 @@ impl<'d> LightMis<'d> {
         p: Vec3,
         ng: Vec3,
         wi: Vec3,
-    ) -> f32 {
+    ) -> Strategies {
         let cam = &scene.camera;
         let b0 = &self.recent.before[0];
         let cam_area = to_area(
@@ -469,7 +514,7 @@ impl<'d> LightMis<'d> {
                 },
             )
         };
-        weight(self.l_fwd, [p0, p1, self.l_fwd])
+        Strategies::new([p0, p1, self.l_fwd], 2)
     }
 
     /// The path left `yj` by a direction sampled with `delta`.

@@ -53,6 +53,9 @@ pub struct RenderOptions {
     /// Choose the method by a pilot among these candidates (`auto`, [`crate::auto`]);
     /// `method` is then replaced by the choice.
     pub auto: Option<AutoSpec>,
+    /// Add the integrator's second-moment layers after its layers
+    /// ([`crate::integrator::Integrator::moment_layers`]; `auto`'s pilot asks for them).
+    pub moments: bool,
 }
 
 impl Default for RenderOptions {
@@ -71,6 +74,7 @@ impl Default for RenderOptions {
             passes: PassSelection::ALL,
             specialise: true,
             auto: None,
+            moments: false,
         }
     }
 }
@@ -104,6 +108,7 @@ impl RenderOptions {
             seed: s.seed,
             passes: PassSelection::ALL,
             specialise: true,
+            moments: false,
         })
     }
 
@@ -374,7 +379,18 @@ fn trace(
     let npix = cam.pixel_count();
     let integrator = opts.method.integrator;
     let paths = integrator.paths();
-    let layers = integrator.layers();
+    // The integrator's layers, and its second-moment layers after them when asked for.
+    let own_layers = integrator.layers().len();
+    let layers: Vec<&'static str> = integrator
+        .layers()
+        .iter()
+        .chain(if opts.moments {
+            integrator.moment_layers()
+        } else {
+            &[]
+        })
+        .copied()
+        .collect();
     let elapsed_since = |start: Instant| (charged + start.elapsed()).as_secs_f64();
     let mut camera_sampler = guidance.camera_sampler(scene, &opts.method, &opts.guide_params);
     // The probability of sampling the BSDF, learned per region of the photon map's cache
@@ -452,7 +468,9 @@ fn trace(
                         integrator.camera_path(&ctx, raster, &mut rng, state, out);
                         for (l, s) in splats.iter_mut().enumerate() {
                             let (f, w, h) = (&cam.filter, cam.width, cam.height);
-                            if opts.film == FilmMode::Weighted {
+                            if l >= own_layers {
+                                s.splat_second_moment(f, w, h, raster, out[l]);
+                            } else if opts.film == FilmMode::Weighted {
                                 s.splat_weighted(f, w, h, raster, out[l]);
                             } else {
                                 s.splat(f, w, h, raster, out[l]);

@@ -220,12 +220,43 @@ impl SplatList {
     /// pixels `filter` covers there; invalid values are counted and dropped.
     #[inline]
     pub fn splat(&mut self, filter: &PixelFilter, width: u32, height: u32, raster: Vec2, v: Rgb) {
+        self.push(filter, width, height, raster, v, false);
+    }
+
+    /// `v` spread over the filter's pixels with its weights, or with its weights squared.
+    #[inline]
+    fn push(
+        &mut self,
+        filter: &PixelFilter,
+        width: u32,
+        height: u32,
+        raster: Vec2,
+        v: Rgb,
+        squared: bool,
+    ) {
         let Some(v) = self.stats.check(v) else { return };
         if v.max_element() <= 0.0 {
             return;
         }
         let entries = &mut self.entries;
-        filter.splat_weights(raster, width, height, |i, w| entries.push((i, v * w)));
+        filter.splat_weights(raster, width, height, |i, w| {
+            entries.push((i, v * if squared { w * w } else { w }))
+        });
+    }
+
+    /// Adds `v`, a squared value (or a second-moment term), at raster position `raster` to
+    /// the pixels `filter` covers there, with the filter's weights squared: the second
+    /// moment of what [`Self::splat`] adds for the value.
+    #[inline]
+    pub fn splat_second_moment(
+        &mut self,
+        filter: &PixelFilter,
+        width: u32,
+        height: u32,
+        raster: Vec2,
+        v: Rgb,
+    ) {
+        self.push(filter, width, height, raster, v, true);
     }
 
     /// Adds a camera sample `v` taken at raster position `raster` to every pixel the filter

@@ -5,7 +5,7 @@
 //! against the light path's camera connections.
 
 use super::{Context, Integrator, Paths, light_tracing, path_tracing};
-use crate::mis::{CameraMis, LightMis};
+use crate::mis::{CameraMis, Densities, LightMis, PilotMis};
 use footprint::Rgb;
 use footprint::film::SplatList;
 use footprint::guide::sampler::SamplerState;
@@ -25,6 +25,9 @@ impl Integrator for Combined {
     fn layers(&self) -> &'static [&'static str] {
         &["combined", "pt", "lt"]
     }
+    fn moment_layers(&self) -> &'static [&'static str] {
+        &crate::moments::LAYERS
+    }
     fn paths(&self) -> Paths {
         Paths {
             camera: true,
@@ -39,20 +42,28 @@ impl Integrator for Combined {
         state: &mut SamplerState<'a>,
         out: &mut [Rgb],
     ) {
-        let cam = &ctx.scene.camera;
+        let position = ctx.scene.camera.position;
         let densities = ctx.densities();
-        let c = crate::specialised!(ctx.specialisation, F => path_tracing::trace::<F, _>(
-            ctx.scene,
-            cam.position,
-            cam.ray_dir(raster),
-            (ctx.max_depth, ctx.rr_depth),
-            &ctx.camera_sampler,
-            state,
-            rng,
-            CameraMis::new(cam.position, &densities),
-        ));
+        // The second-moment layers, when asked for, follow the three (`crate::moments`).
+        let c = if out.len() > 3 {
+            let unguided = Densities {
+                guided: false,
+                ..ctx.densities()
+            };
+            let share = PilotMis {
+                main: CameraMis::new(position, &densities),
+                unguided: CameraMis::new(position, &unguided),
+            };
+            path_tracing::camera_path(ctx, raster, rng, state, share)
+        } else {
+            let share = CameraMis::new(position, &densities);
+            path_tracing::camera_path(ctx, raster, rng, state, share)
+        };
         out[0] += c.share;
         out[1] += c.pt;
+        for (o, m) in out.iter_mut().skip(3).zip(c.m2) {
+            *o += m;
+        }
     }
     fn light_path<'a>(
         &self,
@@ -61,17 +72,30 @@ impl Integrator for Combined {
         state: &mut SamplerState<'a>,
         splats: &mut [SplatList],
     ) {
-        let [combined, _, lt] = splats else {
+        let (own, moments) = splats.split_at_mut(3);
+        let [combined, _, lt] = own else {
             return;
         };
+        let pilot = !moments.is_empty();
+        let share = light_tracing::Shared {
+            combined,
+            moments: pilot.then_some(moments),
+        };
         let densities = ctx.densities();
-        crate::specialised!(ctx.specialisation, F => light_tracing::trace::<F, _>(
-            ctx,
-            rng,
-            state,
-            lt,
-            Some(combined),
-            |li, p, n| LightMis::new(ctx.scene, &densities, li, p, n),
-        ));
+        let scene = ctx.scene;
+        if pilot {
+            let unguided = Densities {
+                guided: false,
+                ..ctx.densities()
+            };
+            light_tracing::light_path(ctx, rng, state, lt, Some(share), |li, p, n| PilotMis {
+                main: LightMis::new(scene, &densities, li, p, n),
+                unguided: LightMis::new(scene, &unguided, li, p, n),
+            });
+        } else {
+            light_tracing::light_path(ctx, rng, state, lt, Some(share), |li, p, n| {
+                LightMis::new(scene, &densities, li, p, n)
+            });
+        }
     }
 }

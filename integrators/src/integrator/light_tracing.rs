@@ -26,16 +26,18 @@
 
 use super::{Context, Integrator, Paths};
 use crate::emit::{first_ray, sample_light};
-use crate::mis::LightMis;
+use crate::mis::{LightMis, PilotMis, Strategies};
 use crate::walk::{Arrival, Start, Vertex, Visitor, walk};
+use footprint::Rgb;
 use footprint::bsdf::TransportMode;
 use footprint::film::SplatList;
 use footprint::guide::sampler::{DirectionSample, SamplerState};
 use footprint::rng::Rng;
 use footprint::scene::Scene;
+use footprint::scene::camera::Camera;
 use footprint::scene::features::Features;
 use footprint::scene::light::Light;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use std::marker::PhantomData;
 
 /// Light tracing, registered as `lt`.
@@ -64,50 +66,103 @@ impl Integrator for LightTracing {
         state: &mut SamplerState<'a>,
         splats: &mut [SplatList],
     ) {
-        crate::specialised!(ctx.specialisation, F => trace::<F, _>(
-            ctx,
-            rng,
-            state,
-            &mut splats[0],
-            None,
-            |_, _, _| (),
-        ));
+        light_path(ctx, rng, state, &mut splats[0], None, |_, _, _| ());
     }
+}
+
+/// One light path in the render's compiled loop (arguments as [`trace`]).
+pub fn light_path<'a, W: LightShare>(
+    ctx: &Context<'a>,
+    rng: &mut Rng,
+    state: &mut SamplerState<'a>,
+    lt: &mut SplatList,
+    share: Option<Shared<'_>>,
+    weights: impl FnOnce(u32, Vec3, Option<Vec3>) -> W,
+) {
+    crate::specialised!(ctx.specialisation, F => trace::<F, _>(
+        ctx, rng, state, lt, share, weights,
+    ));
 }
 
 /// A second estimate a light path feeds, with its own weights for the same connections.
 pub trait LightShare: Copy {
-    /// Weight of the light point itself seen by the camera.
-    fn light_seen(&self, scene: &Scene, to_camera: Vec3) -> f32;
+    /// The strategies (and so the weight) of the light point itself seen by the camera.
+    fn light_seen(&self, scene: &Scene, to_camera: Vec3) -> Strategies;
     fn arrive(&mut self, light: &Light, v: &Vertex);
-    /// Weight of the camera connection from `v` in direction `wi`.
-    fn connection(&self, scene: &Scene, v: &Vertex, wi: Vec3) -> f32;
+    /// The strategies of the camera connection from `v` in direction `wi`.
+    fn connection(&self, scene: &Scene, v: &Vertex, wi: Vec3) -> Strategies;
     fn scattered(&mut self, v: &Vertex, s: &DirectionSample);
 }
 
 impl LightShare for () {
-    fn light_seen(&self, _scene: &Scene, _to_camera: Vec3) -> f32 {
-        0.0
+    fn light_seen(&self, _scene: &Scene, _to_camera: Vec3) -> Strategies {
+        Strategies::NONE
     }
     fn arrive(&mut self, _light: &Light, _v: &Vertex) {}
-    fn connection(&self, _scene: &Scene, _v: &Vertex, _wi: Vec3) -> f32 {
-        0.0
+    fn connection(&self, _scene: &Scene, _v: &Vertex, _wi: Vec3) -> Strategies {
+        Strategies::NONE
     }
     fn scattered(&mut self, _v: &Vertex, _s: &DirectionSample) {}
 }
 
 impl LightShare for LightMis<'_> {
-    fn light_seen(&self, scene: &Scene, to_camera: Vec3) -> f32 {
-        self.weight_light_seen(scene, to_camera)
+    fn light_seen(&self, scene: &Scene, to_camera: Vec3) -> Strategies {
+        LightMis::light_seen(self, scene, to_camera)
     }
     fn arrive(&mut self, light: &Light, v: &Vertex) {
         LightMis::arrive(self, light, v.depth, -v.wo, v.hit.p, v.hit.ng);
     }
-    fn connection(&self, scene: &Scene, v: &Vertex, wi: Vec3) -> f32 {
-        self.weight_camera_connection(scene, v.depth, &v.bsdf, v.hit.p, v.hit.ng, wi)
+    fn connection(&self, scene: &Scene, v: &Vertex, wi: Vec3) -> Strategies {
+        self.camera_connection(scene, v.depth, &v.bsdf, v.hit.p, v.hit.ng, wi)
     }
     fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
         LightMis::scattered(self, v.depth, v.hit.p, v.hit.ng, &v.bsdf, s.delta);
+    }
+}
+
+/// `auto`'s pilot: the samplers' weights, and the unguided densities beside them.
+impl LightShare for PilotMis<LightMis<'_>> {
+    fn light_seen(&self, scene: &Scene, to_camera: Vec3) -> Strategies {
+        Strategies {
+            unguided: LightShare::light_seen(&self.unguided, scene, to_camera).p,
+            ..LightShare::light_seen(&self.main, scene, to_camera)
+        }
+    }
+    fn arrive(&mut self, light: &Light, v: &Vertex) {
+        LightShare::arrive(&mut self.main, light, v);
+        LightShare::arrive(&mut self.unguided, light, v);
+    }
+    fn connection(&self, scene: &Scene, v: &Vertex, wi: Vec3) -> Strategies {
+        Strategies {
+            unguided: LightShare::connection(&self.unguided, scene, v, wi).p,
+            ..LightShare::connection(&self.main, scene, v, wi)
+        }
+    }
+    fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
+        LightShare::scattered(&mut self.main, v, s);
+        LightShare::scattered(&mut self.unguided, v, s);
+    }
+}
+
+/// The combined image's splats a light path adds to: its share, weighted, and the
+/// second-moment layers ([`crate::moments`]) when they are asked for.
+pub struct Shared<'f> {
+    pub combined: &'f mut SplatList,
+    pub moments: Option<&'f mut [SplatList]>,
+}
+
+impl Shared<'_> {
+    /// Splats a connection of unweighted value `v` at `raster`, made by `st`.
+    #[inline]
+    fn splat(&mut self, cam: &Camera, raster: Vec2, v: Rgb, st: &Strategies) {
+        let (f, w, h) = (&cam.filter, cam.width, cam.height);
+        self.combined.splat(f, w, h, raster, v * st.weight());
+        if let Some(m) = self.moments.as_deref_mut() {
+            let t = crate::moments::terms(v, st, v, false);
+            for (list, t) in m.iter_mut().zip(t) {
+                list.splat_second_moment(f, w, h, raster, t);
+            }
+        }
     }
 }
 
@@ -119,7 +174,7 @@ pub fn trace<'a, F: Features, W: LightShare>(
     rng: &mut Rng,
     state: &mut SamplerState<'a>,
     lt: &mut SplatList,
-    share: Option<&mut SplatList>,
+    share: Option<Shared<'_>>,
     weights: impl FnOnce(u32, Vec3, Option<Vec3>) -> W,
 ) {
     let scene = ctx.scene;
@@ -145,9 +200,9 @@ pub fn trace<'a, F: Features, W: LightShare>(
             if le.max_element() > 0.0 && visible {
                 let v = le * (cos_l * conn.we_geom / (em.pdf_pos * pmf));
                 lt.splat(&cam.filter, w, h, conn.raster, v);
-                if let Some(s) = share.as_deref_mut() {
-                    let wt = weights.light_seen(scene, conn.dir_to_camera);
-                    s.splat(&cam.filter, w, h, conn.raster, v * wt);
+                if let Some(s) = share.as_mut() {
+                    let st = weights.light_seen(scene, conn.dir_to_camera);
+                    s.splat(cam, conn.raster, v, &st);
                 }
             }
         }
@@ -186,7 +241,7 @@ struct LightVisitor<'s, 'f, W, F> {
     light: &'s Light,
     lt: &'f mut SplatList,
     /// The second estimate's splats and weights.
-    share: Option<&'f mut SplatList>,
+    share: Option<Shared<'f>>,
     weights: W,
     features: PhantomData<F>,
 }
@@ -215,9 +270,9 @@ impl<W: LightShare, F: Features> Visitor for LightVisitor<'_, '_, W, F> {
         let value = v.beta * f * (wi.dot(v.hit.ns).abs() * conn.we_geom);
         let (w, h) = (cam.width, cam.height);
         self.lt.splat(&cam.filter, w, h, conn.raster, value);
-        if let Some(s) = self.share.as_deref_mut() {
-            let wt = self.weights.connection(scene, v, wi);
-            s.splat(&cam.filter, w, h, conn.raster, value * wt);
+        if let Some(s) = self.share.as_mut() {
+            let st = self.weights.connection(scene, v, wi);
+            s.splat(cam, conn.raster, value, &st);
         }
     }
 

@@ -73,6 +73,11 @@ pub trait Integrator: Sync {
     fn about(&self) -> &'static str;
     /// The estimates it writes, main image first (one EXR layer each).
     fn layers(&self) -> &'static [&'static str];
+    /// Second-moment layers it can add after its layers when a render asks for them
+    /// (`RenderOptions::moments`, `auto`'s pilot; [`crate::moments`]); none by default.
+    fn moment_layers(&self) -> &'static [&'static str] {
+        &[]
+    }
     /// The paths one pass traces (and so the particle maps its guided form needs).
     fn paths(&self) -> Paths;
     /// One camera path through raster position `raster`; adds to `out[layer]`.

@@ -16,7 +16,7 @@
 //! at hit `n` closes a path of `n` segments; a next-event connection at hit `n`, `n + 1`.
 
 use super::{Context, Integrator, Paths};
-use crate::mis::CameraMis;
+use crate::mis::{CameraMis, PilotMis, Strategies};
 use crate::walk::{Arrival, Start, Vertex, Visitor, walk};
 use footprint::Rgb;
 use footprint::bsdf::TransportMode;
@@ -59,19 +59,29 @@ impl Integrator for PathTracing {
         state: &mut SamplerState<'a>,
         out: &mut [Rgb],
     ) {
-        let cam = &ctx.scene.camera;
-        let c = crate::specialised!(ctx.specialisation, F => trace::<F, _>(
-            ctx.scene,
-            cam.position,
-            cam.ray_dir(raster),
-            (ctx.max_depth, ctx.rr_depth),
-            &ctx.camera_sampler,
-            state,
-            rng,
-            (),
-        ));
-        out[0] += c.pt;
+        out[0] += camera_path(ctx, raster, rng, state, ()).pt;
     }
+}
+
+/// One camera path through `raster` in the render's compiled loop, feeding `share`.
+pub fn camera_path<'a, S: CameraShare>(
+    ctx: &Context<'a>,
+    raster: Vec2,
+    rng: &mut Rng,
+    state: &mut SamplerState<'a>,
+    share: S,
+) -> CameraContribution {
+    let cam = &ctx.scene.camera;
+    crate::specialised!(ctx.specialisation, F => trace::<F, _>(
+        ctx.scene,
+        cam.position,
+        cam.ray_dir(raster),
+        (ctx.max_depth, ctx.rr_depth),
+        &ctx.camera_sampler,
+        state,
+        rng,
+        share,
+    ))
 }
 
 /// A second estimate a camera path feeds, with its own weights for the same
@@ -80,15 +90,19 @@ pub trait CameraShare: Copy {
     /// False for `()`: nothing to compute.
     const ACTIVE: bool;
     fn arrive(&mut self, _scene: &Scene, _v: &Vertex) {}
-    /// Weight of emission from light `li` found at `v`.
-    fn light_hit(&self, _scene: &Scene, _li: u32, _v: &Vertex) -> f32 {
-        0.0
+    /// The strategies (and so the weight) of emission from light `li` found at `v`.
+    fn light_hit(&self, _scene: &Scene, _li: u32, _v: &Vertex) -> Strategies {
+        Strategies::NONE
     }
-    /// Weight of a next-event connection from `v` to `ls` on light `li`.
-    fn nee(&self, _scene: &Scene, _li: u32, _v: &Vertex, _ls: &LightSample) -> f32 {
-        0.0
+    /// The strategies of a next-event connection from `v` to `ls` on light `li`.
+    fn nee(&self, _scene: &Scene, _li: u32, _v: &Vertex, _ls: &LightSample) -> Strategies {
+        Strategies::NONE
     }
     fn scattered(&mut self, _v: &Vertex, _s: &DirectionSample) {}
+    /// The path also feeds the second-moment layers (`crate::moments`).
+    fn moments(&self) -> bool {
+        false
+    }
 }
 
 impl CameraShare for () {
@@ -100,23 +114,55 @@ impl CameraShare for CameraMis<'_> {
     fn arrive(&mut self, scene: &Scene, v: &Vertex) {
         CameraMis::arrive(self, scene, v.depth, -v.wo, v.hit.p, v.hit.ng);
     }
-    fn light_hit(&self, scene: &Scene, li: u32, v: &Vertex) -> f32 {
-        self.weight_light_hit(scene, li, v.depth, v.wo, v.hit.p)
+    fn light_hit(&self, scene: &Scene, li: u32, v: &Vertex) -> Strategies {
+        CameraMis::light_hit(self, scene, li, v.depth, v.wo, v.hit.p)
     }
-    fn nee(&self, scene: &Scene, li: u32, v: &Vertex, ls: &LightSample) -> f32 {
-        self.weight_nee(scene, li, v.depth, &v.bsdf, v.hit.p, v.hit.ng, v.wo, ls)
+    fn nee(&self, scene: &Scene, li: u32, v: &Vertex, ls: &LightSample) -> Strategies {
+        CameraMis::nee(
+            self, scene, li, v.depth, &v.bsdf, v.hit.p, v.hit.ng, v.wo, ls,
+        )
     }
     fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
         CameraMis::scattered(self, v.depth, v.hit.p, v.hit.ng, &v.bsdf, s.delta);
     }
 }
 
+/// `auto`'s pilot: the samplers' weights, and the unguided densities beside them.
+impl CameraShare for PilotMis<CameraMis<'_>> {
+    const ACTIVE: bool = true;
+    fn arrive(&mut self, scene: &Scene, v: &Vertex) {
+        CameraShare::arrive(&mut self.main, scene, v);
+        CameraShare::arrive(&mut self.unguided, scene, v);
+    }
+    fn light_hit(&self, scene: &Scene, li: u32, v: &Vertex) -> Strategies {
+        Strategies {
+            unguided: CameraShare::light_hit(&self.unguided, scene, li, v).p,
+            ..CameraShare::light_hit(&self.main, scene, li, v)
+        }
+    }
+    fn nee(&self, scene: &Scene, li: u32, v: &Vertex, ls: &LightSample) -> Strategies {
+        Strategies {
+            unguided: CameraShare::nee(&self.unguided, scene, li, v, ls).p,
+            ..CameraShare::nee(&self.main, scene, li, v, ls)
+        }
+    }
+    fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
+        CameraShare::scattered(&mut self.main, v, s);
+        CameraShare::scattered(&mut self.unguided, v, s);
+    }
+    fn moments(&self) -> bool {
+        true
+    }
+}
+
 /// What one camera path contributes: the path tracer's own estimate (NEE and light hits
-/// weighted against each other) and its share of a second estimate.
+/// weighted against each other), its share of a second estimate, and what it adds to the
+/// second-moment layers ([`crate::moments`], when the share asks for them).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct CameraContribution {
     pub pt: Rgb,
     pub share: Rgb,
+    pub m2: [Rgb; crate::moments::LAYERS.len()],
 }
 
 /// Estimates the radiance arriving at `origin` from direction `-dir` (the ray `origin + t
@@ -253,6 +299,20 @@ impl Learning {
     }
 }
 
+impl<S: CameraShare, F: Features> CameraVisitor<'_, S, F> {
+    /// A contribution of unweighted value `value`, made by `st`, of which the path tracer
+    /// kept `own`, adds to the second-moment layers when they are asked for.
+    #[inline]
+    fn moments(&mut self, value: Rgb, st: &Strategies, own: Rgb) {
+        if self.share.moments() {
+            let t = crate::moments::terms(value, st, own, true);
+            for (m, t) in self.out.m2.iter_mut().zip(t) {
+                *m += t;
+            }
+        }
+    }
+}
+
 impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
     type F = F;
 
@@ -274,7 +334,8 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
         self.out.pt += beta * le * w;
         self.learning.credit(beta * le * w);
         // The second estimate takes environment paths from the path tracer alone (see
-        // `light_tracing`): the same two-strategy weights.
+        // `light_tracing`): the same two-strategy weights. They add nothing to the
+        // second-moment layers (`crate::moments`).
         if S::ACTIVE {
             self.out.share += beta * le * w;
         }
@@ -303,7 +364,9 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
         self.out.pt += c;
         self.learning.credit(c);
         if S::ACTIVE {
-            self.out.share += v.beta * le * self.share.light_hit(self.scene, li, v);
+            let st = self.share.light_hit(self.scene, li, v);
+            self.out.share += v.beta * le * st.weight();
+            self.moments(v.beta * le, &st, c);
         }
     }
 
@@ -349,12 +412,13 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
         self.learning.credit(contrib * w_pt);
         if S::ACTIVE {
             // Environment paths come from the path tracer alone (see `light_tracing`).
-            let w = if F::ENVIRONMENT && light.is_environment() {
-                w_pt
+            if F::ENVIRONMENT && light.is_environment() {
+                self.out.share += contrib * w_pt;
             } else {
-                self.share.nee(scene, li as u32, v, &ls)
-            };
-            self.out.share += contrib * w;
+                let st = self.share.nee(scene, li as u32, v, &ls);
+                self.out.share += contrib * st.weight();
+                self.moments(contrib, &st, contrib * w_pt);
+            }
         }
     }
 
