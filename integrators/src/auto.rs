@@ -7,10 +7,12 @@
 //!
 //! * **Prediction.** For candidate `m` with per-pass variance `σ²_m` per pixel and channel, a
 //!   pass time `t_m` and the time left `T`: `E_m = mean[(σ²_m t_m / T + b²_m) / (R² + 0.01)]`,
-//!   `R` the pilot's combined mean over each pixel's 3x3 neighbourhood (a pixel's own pilot
-//!   mean is heavy-tailed and usually low where rare bright paths carry the light, which
+//!   `R` a combined mean over each pixel's 3x3 neighbourhood (a pixel's own pilot mean is
+//!   heavy-tailed and usually low where rare bright paths carry the light, which
 //!   overweights the pixels guiding helps), everything divided by `R`'s mean luminance as
-//!   `compare` does.
+//!   `compare` does. `R` comes from the *other* pilots' combined images, pooled (a pilot's
+//!   own is correlated with its candidates' noise); only without a guided pilot from the
+//!   unguided pilot's own.
 //! * **Paths the pilot missed.** A few passes miss a method's rare, bright paths (door's
 //!   unguided path tracing: 14 passes predicted 0.063 where 16 s measure 0.81). The pilot's
 //!   combined image also estimates each estimate's second moment by MIS from every path,
@@ -180,6 +182,18 @@ impl Moments {
             }
         }
         self.n += 1;
+    }
+
+    /// Adds the passes of `o` (another pilot's estimate of the same image).
+    fn pool(&mut self, o: &Moments) {
+        let pairs = self.sum.iter_mut().zip(&mut self.sum2);
+        for ((s, s2), (os, os2)) in pairs.zip(o.sum.iter().zip(&o.sum2)) {
+            for c in 0..3 {
+                s[c] += os[c];
+                s2[c] += os2[c];
+            }
+        }
+        self.n += o.n;
     }
 
     /// Adds `a - b` pixel by pixel.
@@ -614,8 +628,18 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         let p = pilot_passes(scene, opts, both, &gd, until, 2);
         // The guided pt and lt passes timed themselves (two each, the faster), as the
         // unguided ones are: the guided combined pass's halves also carry its MIS densities.
-        let t_pt_g = pass_seconds(scene, opts, find("pt", gname), &gd, 2);
-        let t_lt_g = pass_seconds(scene, opts, find("lt", gname), &gd, 2);
+        // Timed without guided splitting: the pilot's combined image does not split, so its
+        // pt and lt layers measure the noise of unsplit paths, and noise and time must be
+        // of the same method (splitting is then a bonus the prediction does not count).
+        let unsplit = RenderOptions {
+            guide_params: footprint::settings::GuideParams {
+                guided_split: 1,
+                ..opts.guide_params.clone()
+            },
+            ..opts.clone()
+        };
+        let t_pt_g = pass_seconds(scene, &unsplit, find("pt", gname), &gd, 2);
+        let t_lt_g = pass_seconds(scene, &unsplit, find("lt", gname), &gd, 2);
         last_guided = Some(g0.elapsed().as_secs_f64());
         let secs = [p.camera_s + p.light_s, t_pt_g, t_lt_g];
         // The MIS estimates need the densities the guided paths were drawn with: with
@@ -631,14 +655,34 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         pilots.push((gname, p, secs));
         built.push((gname.to_string(), gd));
     }
-    // The metric's weights read from the unguided pilot's combined image: a guided pilot's
-    // own is correlated with its candidates' noise (a bright sample raises both the weight's
-    // R and the variance at a pixel): on door it put the guided candidates' predictions 3x
-    // (`pt-footprint`) to 9x (`combined-footprint`) below what they measure.
-    let metric = Metric::new(scene, &reference);
+    // The metric's weights `1 / (R² + 0.01)` for each pilot's candidates read `R` from the
+    // other pilots' combined images, pooled, never from the pilot's own: a pilot's own
+    // image is correlated with its candidates' noise (a bright sample raises both `R` and
+    // the variance at its pixel, and the noisiest pixels get the least weight). Measured
+    // with the unguided pilot's `R` for every candidate: on door `pt-bsdf`, whose own pilot
+    // that is, predicted 0.063 where 16 s measure 0.81 (0.57-0.73 with the MIS moments);
+    // with a guided pilot's own `R` its candidates came out 3-9x too low; on Veach Ajar
+    // the guided candidates 1.5-2.6x too high, so `auto` chose the combined image. With
+    // the other pilots' `R` it chose `pt-footprint` on Veach Ajar on every seed (README
+    // "auto against the fixed methods"). Without a guided pilot the unguided pilot's own
+    // image is all there is.
+    let others = |skip: Option<usize>| -> Option<Metric> {
+        let mut pooled: Option<Moments> = skip.map(|_| reference.clone());
+        for (j, (_, p, _)) in pilots.iter().enumerate() {
+            if Some(j) != skip {
+                match &mut pooled {
+                    Some(r) => r.pool(&p.layers[0]),
+                    None => pooled = Some(p.layers[0].clone()),
+                }
+            }
+        }
+        pooled.map(|r| Metric::new(scene, &r))
+    };
+    let metric = others(None).unwrap_or_else(|| Metric::new(scene, &reference));
     let mut all = measure(scene, &pilot, &reference, &metric, true, secs, "bsdf");
-    for (gname, p, secs) in &pilots {
-        all.extend(measure(scene, p, &reference, &metric, false, *secs, gname));
+    for (j, (gname, p, secs)) in pilots.iter().enumerate() {
+        let own = others(Some(j)).expect("the unguided pilot");
+        all.extend(measure(scene, p, &reference, &own, false, *secs, gname));
         // What the unguided candidates' own pilot paths missed, seen from the guided paths
         // (crate::moments): the guided pilot's MIS estimate of each unguided estimate's
         // second moment less the unguided pilot's own.
