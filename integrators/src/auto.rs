@@ -236,8 +236,8 @@ fn can_miss_light(scene: &Scene, integrator: &str) -> Option<&'static str> {
 }
 
 /// The pilot's passes of the combined image of `guide` (`bsdf` or a guide with maps):
-/// moments of the combined, pt and lt layers, and the camera-path and light-path time of the
-/// fastest pass (as [`pass_seconds`]: other jobs on the machine only ever slow a pass down).
+/// moments of the combined, pt and lt layers and of the second-moment layers (the methods'
+/// pass times are measured apart, [`pass_seconds`]).
 struct Pilot {
     layers: [Moments; 3],
     /// Moments of each layer less the combined layer of the same pass: the noise of a
@@ -245,8 +245,6 @@ struct Pilot {
     diffs: [Moments; 3],
     /// The second-moment layers ([`crate::moments::LAYERS`]), their means per pass.
     m2: [Moments; moments::LAYERS.len()],
-    camera_s: f64,
-    light_s: f64,
 }
 
 fn pilot_passes(
@@ -262,8 +260,6 @@ fn pilot_passes(
         layers: [Moments::new(npix), Moments::new(npix), Moments::new(npix)],
         diffs: [Moments::new(npix), Moments::new(npix), Moments::new(npix)],
         m2: std::array::from_fn(|_| Moments::new(npix)),
-        camera_s: f64::INFINITY,
-        light_s: f64::INFINITY,
     };
     for b in 0..MAX_BATCHES {
         if b >= min_batches && until.is_none_or(|u| Instant::now() >= u) {
@@ -289,13 +285,6 @@ fn pilot_passes(
         let combined = &r.layers[0].1;
         for (m, (_, img)) in p.diffs.iter_mut().zip(&r.layers) {
             m.add_difference(img, combined);
-        }
-        let (c, l) = (
-            r.timings.camera_paths.as_secs_f64(),
-            r.timings.light_paths.as_secs_f64(),
-        );
-        if c + l < p.camera_s + p.light_s {
-            (p.camera_s, p.light_s) = (c, l);
         }
     }
     p
@@ -423,10 +412,9 @@ struct Metric {
 }
 
 impl Metric {
-    fn new(scene: &Scene, reference: &Moments) -> Self {
+    /// The image's mean luminance, what the metric divides by.
+    fn mean_luminance(reference: &Moments) -> f64 {
         let npix = reference.sum.len();
-        let width = (scene.camera.width as usize).max(1);
-        let height = npix / width;
         let mut m = Rgb::ZERO;
         for i in 0..npix {
             m += Rgb::new(
@@ -435,7 +423,14 @@ impl Metric {
                 reference.mean(i, 2) as f32,
             );
         }
-        let scale = (luminance(m / npix as f32) as f64).max(1e-20);
+        (luminance(m / npix as f32) as f64).max(1e-20)
+    }
+
+    /// The weights from `reference`, the image divided by `scale`.
+    fn with_scale(scene: &Scene, reference: &Moments, scale: f64) -> Self {
+        let npix = reference.sum.len();
+        let width = (scene.camera.width as usize).max(1);
+        let height = npix / width;
         // The weight read from the reference's 3x3 neighbourhood mean: a pixel's own pilot
         // mean is heavy-tailed (usually below its expectation where rare bright paths carry
         // the light), which overweights exactly the pixels guiding helps.
@@ -548,10 +543,13 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         Some(t) => (t - spent).max(1e-3),
         None => opts.spp as f64 * t_pt,
     };
-    // Every pilot is measured at the end, with the metric's weights read from the best of
-    // their combined images (see below).
+    // Every pilot is measured at the end, with the metric's weights read from the other
+    // pilots' combined images (see below).
     let mut pilots: Vec<(&str, Pilot, [f64; 3])> = Vec::new();
-    let secs = [pilot.camera_s + pilot.light_s, t_pt, t_lt];
+    // The combined image timed on its own passes, as pt and lt are: the pilot's passes
+    // also fill the second-moment layers.
+    let t_c = pass_seconds(scene, opts, find("combined", "bsdf"), &unguided, 2);
+    let secs = [t_c, t_pt, t_lt];
     // Guided maps are piloted even when they do not fit when nothing else is wanted.
     let only_guided = spec.candidates.iter().all(|m| m.guide.uses_particles());
     let mut notes = Vec::new();
@@ -641,10 +639,12 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         let t_pt_g = pass_seconds(scene, &unsplit, find("pt", gname), &gd, 2);
         let t_lt_g = pass_seconds(scene, &unsplit, find("lt", gname), &gd, 2);
         last_guided = Some(g0.elapsed().as_secs_f64());
-        let secs = [p.camera_s + p.light_s, t_pt_g, t_lt_g];
+        let t_c_g = pass_seconds(scene, &unsplit, both, &gd, 2);
+        let secs = [t_c_g, t_pt_g, t_lt_g];
         // The MIS estimates need the densities the guided paths were drawn with: with
-        // unguided weights (--guided-mis off) the layers read other densities.
-        let p = if opts.guide_params.guided_mis {
+        // unguided weights (--guided-mis off) or per-event guiding (no cache: its MIS
+        // densities are the BSDF's) the layers read other densities.
+        let p = if opts.guide_params.guided_mis && opts.guide_params.cache {
             p
         } else {
             Pilot {
@@ -666,7 +666,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     // the other pilots' `R` it chose `pt-footprint` on Veach Ajar on every seed (README
     // "auto against the fixed methods"). Without a guided pilot the unguided pilot's own
     // image is all there is.
-    let others = |skip: Option<usize>| -> Option<Metric> {
+    let others = |skip: Option<usize>| -> Option<Moments> {
         let mut pooled: Option<Moments> = skip.map(|_| reference.clone());
         for (j, (_, p, _)) in pilots.iter().enumerate() {
             if Some(j) != skip {
@@ -676,19 +676,29 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
                 }
             }
         }
-        pooled.map(|r| Metric::new(scene, &r))
+        pooled
     };
-    let metric = others(None).unwrap_or_else(|| Metric::new(scene, &reference));
+    // One scale for every candidate: the image's mean luminance from every pilot pooled
+    // (an image-wide mean, barely correlated with any pilot's per-pixel noise); only the
+    // per-pixel weights leave a pilot's own image out.
+    let mut all_pooled = reference.clone();
+    for (_, p, _) in &pilots {
+        all_pooled.pool(&p.layers[0]);
+    }
+    let scale = Metric::mean_luminance(&all_pooled);
+    let metric = Metric::with_scale(scene, &others(None).unwrap_or(reference.clone()), scale);
     let mut all = measure(scene, &pilot, &reference, &metric, true, secs, "bsdf");
     for (j, (gname, p, secs)) in pilots.iter().enumerate() {
-        let own = others(Some(j)).expect("the unguided pilot");
+        let rest = others(Some(j)).expect("the unguided pilot");
+        let own = Metric::with_scale(scene, &rest, scale);
         all.extend(measure(scene, p, &reference, &own, false, *secs, gname));
         // What the unguided candidates' own pilot paths missed, seen from the guided paths
         // (crate::moments): the guided pilot's MIS estimate of each unguided estimate's
-        // second moment less the unguided pilot's own.
+        // second moment less the unguided pilot's own, weighed without that guided pilot's
+        // image (its rare bright paths raise both).
         for (l, c) in all.iter_mut().take(3).enumerate() {
             let e = estimate_index(l);
-            let seen = metric.excess(&p.m2[moments::UNGUIDED + e], &pilot.m2[moments::OWN + e]);
+            let seen = own.excess(&p.m2[moments::UNGUIDED + e], &pilot.m2[moments::OWN + e]);
             if seen > c.unseen {
                 c.pass_variance += seen - c.unseen;
                 c.unseen = seen;

@@ -22,6 +22,14 @@
 //! (`RenderOptions::moments`), deposited with the filter's squared weights
 //! (`SplatList::splat_second_moment`), averaged per pass like every layer. Environment
 //! paths add nothing (the path tracer alone makes them).
+//!
+//! Approximations, each the same for a method's MIS and own layers where it matters: the
+//! cross terms of one sample's contributions are left out; the densities are those the
+//! weights read (with the guide cache the guided mixture in white light, while path
+//! tracing's own weight reads it in the path's colour); Russian roulette is not in them,
+//! so a value carries the survival weights of the path that made it. `auto` uses the layers
+//! only with guided MIS weights and the guide cache, where the weights' densities are the
+//! samplers'.
 
 use crate::mis::Strategies;
 use footprint::Rgb;
@@ -59,11 +67,12 @@ const SETS: [&[usize]; 3] = [&[0, 1], &[2], &[0, 1, 2]];
 /// `set` can make the path.
 pub fn moment_factor(st: &Strategies, q: &[f64; 3], set: &[usize]) -> f64 {
     let p_t = st.p[st.own];
-    let sum_p2: f64 = st.p.iter().map(|p| p * p).sum();
-    if !(p_t > 0.0) || !sum_p2.is_finite() {
+    if !(p_t > 0.0) || !p_t.is_finite() {
         return 0.0;
     }
-    let w_t = p_t * p_t / sum_p2;
+    // The weight as `mis::weight` computes it, scaled by the largest density (products
+    // of area densities of long paths under- and overflow).
+    let w_t = st.weight() as f64;
     let m = set.iter().map(|&s| q[s]).fold(0.0f64, f64::max);
     if !(m > 0.0) || !m.is_finite() {
         return 0.0;

@@ -185,6 +185,9 @@ pub fn trace<'a, F: Features, W: LightShare>(
     };
     let (li, pmf, light) = (start.index, start.pmf, start.light);
     let em = &start.em;
+    // The combined image's light paths never split, environment paths included (they feed
+    // only the `lt` layer there).
+    let combined = share.is_some();
     let mut share = share.filter(|_| !light.is_environment());
     let weights = weights(li as u32, em.p, em.n);
 
@@ -230,6 +233,7 @@ pub fn trace<'a, F: Features, W: LightShare>(
         light,
         lt,
         share,
+        combined,
         weights,
         features: PhantomData,
     };
@@ -242,6 +246,8 @@ struct LightVisitor<'s, 'f, W, F> {
     lt: &'f mut SplatList,
     /// The second estimate's splats and weights.
     share: Option<Shared<'f>>,
+    /// The path belongs to the combined image (it does not split).
+    combined: bool,
     weights: W,
     features: PhantomData<F>,
 }
@@ -286,7 +292,7 @@ impl<W: LightShare, F: Features> Visitor for LightVisitor<'_, '_, W, F> {
     type Branch = W;
     /// Not in the combined image (as camera paths, `path_tracing`).
     fn splits(&self) -> bool {
-        self.share.is_none()
+        !self.combined
     }
     fn branch(&self) -> W {
         self.weights
