@@ -834,6 +834,37 @@ fn sparse_photon_maps_grow_within_a_budget() {
     let g = Guidance::build_within(&door, &both, &params, &pass, budget, &|| None);
     assert!(g.photons.as_ref().unwrap().pass.stats.paths > 20_000);
     assert_eq!(g.importons.as_ref().unwrap().pass.stats.paths, 20_000);
+    // Only the photon side is built again: the importance cache is the one built without a
+    // budget (its seeds are the first light pass's points), and the first photon map's
+    // summary lines give way to the grown one's.
+    let plain_both = Guidance::build_within(&door, &both, &params, &pass, None, &|| None);
+    let regions = |g: &Guidance| g.importon_cache.as_ref().unwrap().stats.regions;
+    assert_eq!(regions(&g), regions(&plain_both));
+    let photon_lines = |g: &Guidance| {
+        let n = g.summaries.iter().filter(|s| s.starts_with("photon map:"));
+        n.count()
+    };
+    assert_eq!(photon_lines(&g), 1, "{:?}", g.summaries);
+    // auto's winner grows the pilot's maps (built for the combined image) with the time
+    // left, for the method it chose.
+    let chosen = footprint_integrators::RenderOptions {
+        method,
+        time: Some(10_000.0),
+        ..Default::default()
+    };
+    let left = Some(10_000.0);
+    let g = footprint_integrators::render::chosen_guidance(
+        &door,
+        &chosen,
+        Some(plain_both),
+        left,
+        &|| None,
+    );
+    assert_eq!(
+        g.photons.as_ref().unwrap().pass.stats.paths,
+        20_000 << footprint_integrators::maps::MAX_GROWTHS
+    );
+    assert!(g.summaries.iter().any(|s| s.contains("grown")));
     // Switched off in the scene.
     let mut off = door;
     off.maps.grow = false;

@@ -32,7 +32,11 @@
 //!   per path); the guides share one pilot's time ([`PILOT_SHARE`] / the number of guides
 //!   each); their maps are then built once, piloted with the same passes, and reused by
 //!   the render if one of them wins. With one map round the particle passes do not depend on
-//!   the guide: they run once and every guide builds its maps and caches from them.
+//!   the guide: they run once and every guide builds its maps and caches from them. A
+//!   guide not piloted (its maps would not fit) leaves its pilot time to those piloted.
+//!   When a method that reads the photon map wins, its sparse photon map grows with the time
+//!   left, as a fixed method's grows with its budget
+//!   ([`crate::render::chosen_guidance`]).
 //! * **Budget.** With `--time T` the pilot takes about [`PILOT_SHARE`] of `T` (at least
 //!   [`MIN_BATCHES`] passes) and counts in the budget: the render stops at `T`, pilot
 //!   included. With `--spp N` the pilot's [`MIN_BATCHES`] passes are extra, the candidates
@@ -247,6 +251,23 @@ struct Pilot {
     m2: [Moments; moments::LAYERS.len()],
 }
 
+impl Pilot {
+    fn new(npix: usize) -> Self {
+        Pilot {
+            layers: std::array::from_fn(|_| Moments::new(npix)),
+            diffs: std::array::from_fn(|_| Moments::new(npix)),
+            m2: std::array::from_fn(|_| Moments::new(npix)),
+        }
+    }
+
+    /// Passes run so far.
+    fn passes(&self) -> usize {
+        self.layers[0].n
+    }
+}
+
+/// Runs pilot passes of `method` into `p` until `until` (at least `min_batches` in all, at
+/// most [`MAX_BATCHES`]); each pass has its own seed, the count so far continuing.
 fn pilot_passes(
     scene: &Scene,
     opts: &RenderOptions,
@@ -254,14 +275,9 @@ fn pilot_passes(
     g: &Guidance,
     until: Option<Instant>,
     min_batches: usize,
-) -> Pilot {
-    let npix = scene.camera.pixel_count();
-    let mut p = Pilot {
-        layers: [Moments::new(npix), Moments::new(npix), Moments::new(npix)],
-        diffs: [Moments::new(npix), Moments::new(npix), Moments::new(npix)],
-        m2: std::array::from_fn(|_| Moments::new(npix)),
-    };
-    for b in 0..MAX_BATCHES {
+    p: &mut Pilot,
+) {
+    for b in p.passes()..MAX_BATCHES {
         if b >= min_batches && until.is_none_or(|u| Instant::now() >= u) {
             break;
         }
@@ -287,7 +303,6 @@ fn pilot_passes(
             m.add_difference(img, combined);
         }
     }
-    p
 }
 
 /// The time of one pass of `method` (its own path loop, no MIS bookkeeping): the fastest of
@@ -518,14 +533,17 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     }
     // ---- Unguided pilot: the combined image's three layers ----
     let until = budget.map(|t| start + Duration::from_secs_f64(PILOT_SHARE * t));
-    let pilot = pilot_passes(
+    let mut pilot = Pilot::new(scene.camera.pixel_count());
+    pilot_passes(
         scene,
         opts,
         find("combined", "bsdf"),
         &unguided,
         until,
         MIN_BATCHES,
+        &mut pilot,
     );
+    let pilot = pilot;
     let t_pt = t_pt1.min(pass_seconds(scene, opts, find("pt", "bsdf"), &unguided, 2));
     let t_lt = t_lt1.min(pass_seconds(scene, opts, find("lt", "bsdf"), &unguided, 2));
     let reference = pilot.layers[0].clone();
@@ -579,7 +597,8 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         .collect();
     // The guided pilots share one pilot's time: each guide's passes get PILOT_SHARE / n of
     // the budget, so that every guide fits where one did.
-    let guided_pilot = PILOT_SHARE / guided.len().max(1) as f64;
+    let guided_count = guided.len();
+    let guided_pilot = PILOT_SHARE / guided_count.max(1) as f64;
     for gname in guided {
         // A particle path costs about a pass's path; the map and cache builds about as much
         // again, and the guided pilot passes as much as both (measured on cornell, door and
@@ -623,7 +642,8 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             guidance(scene, &o, &|| None)
         };
         let until = budget.map(|t| Instant::now() + Duration::from_secs_f64(guided_pilot * t));
-        let p = pilot_passes(scene, opts, both, &gd, until, 2);
+        let mut p = Pilot::new(scene.camera.pixel_count());
+        pilot_passes(scene, opts, both, &gd, until, 2, &mut p);
         // The guided pt and lt passes timed themselves (two each, the faster), as the
         // unguided ones are: the guided combined pass's halves also carry its MIS densities.
         // Timed without guided splitting: the pilot's combined image does not split, so its
@@ -641,19 +661,27 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         last_guided = Some(g0.elapsed().as_secs_f64());
         let t_c_g = pass_seconds(scene, &unsplit, both, &gd, 2);
         let secs = [t_c_g, t_pt_g, t_lt_g];
-        // The MIS estimates need the densities the guided paths were drawn with: with
-        // unguided weights (--guided-mis off) or per-event guiding (no cache: its MIS
-        // densities are the BSDF's) the layers read other densities.
-        let p = if opts.guide_params.guided_mis && opts.guide_params.cache {
-            p
-        } else {
-            Pilot {
-                m2: std::array::from_fn(|_| Moments::new(0)),
-                ..p
-            }
-        };
         pilots.push((gname, p, secs));
         built.push((gname.to_string(), gd));
+    }
+    // The pilot time of guides not piloted goes to those piloted: more passes, less noise
+    // in their predictions (on Veach Ajar the footprints alone had 8-9 passes, whose
+    // estimates of the guided candidates' error ranged over 2.5x from seed to seed).
+    let unpiloted = guided_count - pilots.len();
+    if let (Some(t), true) = (budget, unpiloted > 0 && !pilots.is_empty()) {
+        let each = guided_pilot * t * unpiloted as f64 / pilots.len() as f64;
+        for ((gname, p, _), (_, gd)) in pilots.iter_mut().zip(&built) {
+            let until = Instant::now() + Duration::from_secs_f64(each);
+            pilot_passes(scene, opts, find("combined", gname), gd, Some(until), 0, p);
+        }
+    }
+    // The MIS estimates need the densities the guided paths were drawn with: with
+    // unguided weights (--guided-mis off) or per-event guiding (no cache: its MIS
+    // densities are the BSDF's) the layers read other densities.
+    if !(opts.guide_params.guided_mis && opts.guide_params.cache) {
+        for (_, p, _) in &mut pilots {
+            p.m2 = std::array::from_fn(|_| Moments::new(0));
+        }
     }
     // The metric's weights `1 / (R² + 0.01)` for each pilot's candidates read `R` from the
     // other pilots' combined images, pooled, never from the pilot's own: a pilot's own

@@ -12,7 +12,7 @@
 //!   [`SPOT_FACTOR`] times the reference luminance plus 1% of the reference's mean.
 
 use crate::method::Method;
-use crate::render::{RenderOptions, StopRule, guidance, render, render_prepared};
+use crate::render::{RenderOptions, StopRule, chosen_guidance, guidance, render, render_prepared};
 use anyhow::{Context, Result, bail};
 use footprint::film::Image;
 use footprint::film::image_io::{read_exr, write_exr, write_png};
@@ -591,18 +591,18 @@ pub fn run(
                         auto: None,
                         ..opts.clone()
                     };
-                    let own;
-                    let g = match &choice.guidance {
-                        Some(g) => g,
-                        None => {
-                            own = guidance(scene, &chosen, &|| None);
-                            &own
-                        }
-                    };
+                    let left = Some(t - r0.elapsed().as_secs_f64());
+                    let g = chosen_guidance(scene, &chosen, choice.guidance, left, &|| None);
                     // The pilot and the chosen method's maps are charged to the budget.
                     let charged = r0.elapsed();
-                    let mut r =
-                        render_prepared(scene, &chosen, g, charged, StopRule::WithinBudget, |_| {});
+                    let mut r = render_prepared(
+                        scene,
+                        &chosen,
+                        &g,
+                        charged,
+                        StopRule::WithinBudget,
+                        |_| {},
+                    );
                     r.auto = Some(choice.reason);
                     (r, charged)
                 }

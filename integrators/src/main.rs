@@ -1158,7 +1158,16 @@ fn render_command(
             }
             Guidance::from_passes(scene, &opts.method, &opts.guide_params, passes, &heap_bytes)
         }
-        None if piloted.is_some() => piloted.take().expect("checked"),
+        None if piloted.is_some() => {
+            let left = opts.time.map(|t| t - start.elapsed().as_secs_f64());
+            footprint_integrators::render::chosen_guidance(
+                scene,
+                &opts,
+                piloted.take(),
+                left,
+                &heap_bytes,
+            )
+        }
         None => {
             if maps_file.is_some() {
                 eprintln!(

@@ -8,7 +8,7 @@
 
 use crate::method::Method;
 use crate::passes::{PassOutput, PassSettings, grow_light_pass, light_pass, view_pass};
-use footprint::guide::cache::{CacheStats, GuideCache};
+use footprint::guide::cache::{CacheStats, GuideCache, Seed};
 use footprint::guide::particle_map::{MapKind, ParticleInput, ParticleMap};
 use footprint::guide::sampler::{GuideSource, GuidedSampler};
 use footprint::scene::Scene;
@@ -328,28 +328,50 @@ impl Guidance {
         let Some(budget) = budget.filter(|_| may_grow(scene, params)) else {
             return Self::from_passes(scene, method, params, passes, heap);
         };
-        // The view pass is kept (a copy, timed and charged) as the seeds of a grown photon
+        // The view pass's points are kept (timed and charged) as the seeds of a grown photon
         // map's cache; the light pass comes back out of the photon map.
-        let (light_time, view_time) = (passes.light_time, passes.view_time);
+        let times = (passes.light_time, passes.view_time);
         let copy_start = Instant::now();
-        let view = passes.view.clone();
+        let seeds = passes.view.as_ref().map(|v| v.seeds());
         let copying = copy_start.elapsed();
         let mut first = Self::from_passes(scene, method, params, passes, heap);
         first.timings.map_builds += copying;
-        let Some(why) = first
-            .photon_cache
-            .as_ref()
-            .and_then(|c| sparse(&c.stats, params))
-        else {
-            return first;
+        first.grow_within(scene, method, params, pass, seeds, times, budget, heap)
+    }
+
+    /// Grows a sparse photon map of maps already built ([`Guidance::build_within`]; `auto`
+    /// grows its pilot's maps when a method that reads the photon map wins): `seeds` are the
+    /// view pass's points (the photon cache's seeds), `times` the light and view passes'
+    /// times, `budget` the time the growth is a share of. Unchanged when the photon cache
+    /// is not sparse or no doubling fits; else the photon map and its cache are built again
+    /// from the grown light pass (the first builds' time counts), the importance map and
+    /// its cache kept.
+    #[allow(clippy::too_many_arguments)]
+    pub fn grow_within(
+        mut self,
+        scene: &Scene,
+        method: &Method,
+        params: &GuideParams,
+        pass: &PassSettings,
+        seeds: Option<Vec<Seed>>,
+        (light_time, view_time): (Duration, Duration),
+        budget: Duration,
+        heap: &dyn Fn() -> Option<usize>,
+    ) -> Self {
+        if !may_grow(scene, params) {
+            return self;
+        }
+        let (Some(photons), Some(cache)) = (&self.photons, &self.photon_cache) else {
+            return self;
+        };
+        let Some(why) = sparse(&cache.stats, params) else {
+            return self;
         };
         // The largest doubling whose passes and builds (the first, and the grown one, taken
         // to grow with the particles) fit the share.
-        let built = first.timings.map_builds + first.timings.cache_builds;
+        let built = photons.map.build_time + cache.stats.build_time;
         let cost = |factor: u32| light_time * factor + view_time + built * (1 + factor);
-        let Some(paths) = first.photons.as_ref().map(|m| m.pass.stats.paths) else {
-            return first;
-        };
+        let paths = photons.pass.stats.paths;
         let mut factor = 1u32;
         while factor < 1 << MAX_GROWTHS
             && 2 * factor as usize * paths <= MAX_MAP_PATHS
@@ -358,15 +380,10 @@ impl Guidance {
             factor *= 2;
         }
         if factor == 1 {
-            return first;
+            return self;
         }
-        let first_builds = (first.timings.map_builds, first.timings.cache_builds);
-        let light = first
-            .photons
-            .take()
-            .expect("a sparse photon cache has its map")
-            .pass;
-        drop(first);
+        let light = self.photons.take().expect("checked above").pass;
+        self.photon_cache = None;
         let s = PassSettings {
             paths: factor as usize * light.stats.paths,
             ..pass.clone()
@@ -374,23 +391,29 @@ impl Guidance {
         let grown = format!("photons {} -> {} paths ({why})", light.stats.paths, s.paths);
         let before = light.stats.time;
         let light = grow_light_pass(scene, &s, &GuidedSampler::bsdf(), light);
-        let passes = Passes {
-            light_time: light_time + light.stats.time - before,
-            view_time,
-            light: Some(light),
-            view,
-            rounds: Vec::new(),
-        };
-        let mut g = Self::from_passes(scene, method, params, passes, heap);
-        // The first maps and caches were built for nothing: their time counts.
-        g.timings.map_builds += first_builds.0;
-        g.timings.cache_builds += first_builds.1;
-        g.summaries.push(format!(
+        self.timings.light_pass += light.stats.time - before;
+        // The first photon map's and cache's lines give way to the grown ones'.
+        let name = MapKind::Photons.name();
+        self.summaries.retain(|l| !l.starts_with(name));
+        let (map, cache) = build_with_cache(
+            scene,
+            method,
+            params,
+            MapKind::Photons,
+            light,
+            seeds,
+            &mut self.timings,
+            &mut self.summaries,
+            heap,
+        );
+        self.photons = Some(map);
+        self.photon_cache = cache;
+        self.summaries.push(format!(
             "maps grown with the {:.0}-s budget: {grown} (the first build, {:.2} s, discarded)",
             budget.as_secs_f64(),
             built.as_secs_f64()
         ));
-        g
+        self
     }
 
     /// Builds the maps and caches `method` needs from the passes' output.
@@ -419,19 +442,9 @@ impl Guidance {
         let importon_seeds = (cache && importance_map)
             .then(|| light.as_ref().map(|l| l.seeds()))
             .flatten();
-        let max_dist = scene.map_max_dist();
         let mut make = |kind: MapKind, out: PassOutput, seeds: Option<Vec<_>>| {
-            let built = build_map(kind, out, params.min_depth, heap);
-            g.timings.map_builds += built.map.build_time;
-            g.summaries.push(built.summary());
-            let cache = seeds.map(|s| {
-                let c = GuideCache::build(&built.map, method.guide, &s, params, max_dist);
-                g.timings.cache_builds += c.stats.build_time;
-                g.summaries
-                    .push(format!("{} cache: {}", kind.name(), c.stats.summary()));
-                c
-            });
-            (built, cache)
+            let (t, s) = (&mut g.timings, &mut g.summaries);
+            build_with_cache(scene, method, params, kind, out, seeds, t, s, heap)
         };
         if let (true, Some(out)) = (photon_map, light) {
             let (b, c) = make(MapKind::Photons, out, photon_seeds);
@@ -467,6 +480,33 @@ impl Guidance {
         let (map, cache) = (self.importons.as_ref(), self.importon_cache.as_ref());
         sampler(scene, method, params, map, cache)
     }
+}
+
+/// Builds the map of `kind` from a pass's output and, with `seeds`, its guide cache; their
+/// times and summaries are added to `timings` and `summaries`.
+#[allow(clippy::too_many_arguments)]
+fn build_with_cache(
+    scene: &Scene,
+    method: &Method,
+    params: &GuideParams,
+    kind: MapKind,
+    out: PassOutput,
+    seeds: Option<Vec<Seed>>,
+    timings: &mut MapTimings,
+    summaries: &mut Vec<String>,
+    heap: &dyn Fn() -> Option<usize>,
+) -> (BuiltMap, Option<GuideCache>) {
+    let built = build_map(kind, out, params.min_depth, heap);
+    timings.map_builds += built.map.build_time;
+    summaries.push(built.summary());
+    let cache = seeds.map(|s| {
+        let max_dist = scene.map_max_dist();
+        let c = GuideCache::build(&built.map, method.guide, &s, params, max_dist);
+        timings.cache_builds += c.stats.build_time;
+        summaries.push(format!("{} cache: {}", kind.name(), c.stats.summary()));
+        c
+    });
+    (built, cache)
 }
 
 fn sampler<'a>(

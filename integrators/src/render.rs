@@ -310,10 +310,8 @@ pub fn render_with(
             auto: None,
             ..opts.clone()
         };
-        let g = match choice.guidance {
-            Some(g) => g,
-            None => guidance(scene, &chosen, heap),
-        };
+        let left = chosen.time.map(|t| t - start.elapsed().as_secs_f64());
+        let g = chosen_guidance(scene, &chosen, choice.guidance, left, heap);
         let mut r = render_guided(scene, &chosen, &g, start, on_progress);
         r.auto = Some(choice.reason);
         return r;
@@ -342,6 +340,30 @@ pub fn render_guided(
         StopRule::HalfPass,
         on_progress,
     )
+}
+
+/// The maps of `auto`'s chosen method (`chosen`): the pilot's, `piloted`, with a sparse
+/// photon map grown with the `left` seconds of the budget as a fixed method's grows with
+/// its budget ([`Guidance::grow_within`]); or built now when the pilot built none for it.
+pub fn chosen_guidance(
+    scene: &Scene,
+    chosen: &RenderOptions,
+    piloted: Option<Guidance>,
+    left: Option<f64>,
+    heap: &dyn Fn() -> Option<usize>,
+) -> Guidance {
+    match (piloted, left) {
+        (Some(g), Some(left)) if scene.maps.grow => {
+            let seeds = g.importons.as_ref().map(|m| m.pass.seeds());
+            let times = (g.timings.light_pass, g.timings.view_pass);
+            let left = Duration::from_secs_f64(left.max(0.0));
+            let (method, params) = (&chosen.method, &chosen.guide_params);
+            let pass = pass_settings(scene, chosen);
+            g.grow_within(scene, method, params, &pass, seeds, times, left, heap)
+        }
+        (Some(g), _) => g,
+        (None, _) => guidance(scene, chosen, heap),
+    }
 }
 
 /// Renders with maps and caches built beforehand ([`guidance`]), so that several renders
