@@ -7,12 +7,16 @@
 //!
 //! * **Prediction.** For candidate `m` with per-pass variance `σ²_m` per pixel and channel, a
 //!   pass time `t_m` and the time left `T`: `E_m = mean[(σ²_m t_m / T + b²_m) / (R² + 0.01)]`,
-//!   `R` a combined mean over each pixel's 3x3 neighbourhood (a pixel's own pilot mean is
-//!   heavy-tailed and usually low where rare bright paths carry the light, which
-//!   overweights the pixels guiding helps), everything divided by `R`'s mean luminance as
-//!   `compare` does. `R` comes from the *other* pilots' combined images, pooled (a pilot's
-//!   own is correlated with its candidates' noise); only without a guided pilot from the
-//!   unguided pilot's own.
+//!   everything divided by `R`'s mean luminance as `compare` does. `R` is a combined mean
+//!   over a window around the pixel, the smallest of [`R_RADII`] whose standard error is at
+//!   most [`R_RELATIVE_ERROR`] of it: a pixel's own pilot mean is heavy-tailed and usually
+//!   low where rare bright paths carry the light, and `1 / (R² + 0.01)` of a low `R`
+//!   overweights exactly the pixels guiding helps (door with a 3x3 window: `lt-footprint`
+//!   predicted 4x its error). `R` pools every pilot's combined image, but a pilot's passes
+//!   are dealt to [`FOLDS`] folds and each fold's squared deviations are weighed with `R`
+//!   without that fold's passes (cross-fitting: a bright sample must not raise the `R` that
+//!   weighs it). Measured with the truth's `R` (door's 900-s reference), the predictions
+//!   matched 16-s renders within 1.1x (`lt-footprint` 151 per pass against 140-160).
 //! * **Paths the pilot missed.** A few passes miss a method's rare, bright paths (door's
 //!   unguided path tracing: 14 passes predicted 0.063 where 16 s measure 0.81). The pilot's
 //!   combined image also estimates each estimate's second moment by MIS from every path,
@@ -37,6 +41,10 @@
 //!   When a method that reads the photon map wins, its sparse photon map grows with the time
 //!   left, as a fixed method's grows with its budget
 //!   ([`crate::render::chosen_guidance`]).
+//! * **A margin for guiding.** A guided winner must be predicted [`GUIDED_MARGIN`] times
+//!   better than the best unguided candidate: the pilot's passes are independent samples,
+//!   and what the render's Sobol sequence gains over thousands of passes it cannot measure
+//!   (it gains unguided sampling more; see the constant).
 //! * **Budget.** With `--time T` the pilot takes about [`PILOT_SHARE`] of `T` (at least
 //!   [`MIN_BATCHES`] passes) and counts in the budget: the render stops at `T`, pilot
 //!   included. With `--spp N` the pilot's [`MIN_BATCHES`] passes are extra, the candidates
@@ -61,12 +69,29 @@ pub const PILOT_SHARE: f64 = 0.04;
 /// Guided candidates are piloted only when their maps are predicted to take at most this
 /// share of the budget.
 pub const GUIDED_MAPS_SHARE: f64 = 0.15;
+/// A guided candidate is chosen over the best unguided one only when predicted better by
+/// this factor. The pilot's passes are independent samples, but the render's are a Sobol
+/// sequence, whose stratification gains unguided sampling more over thousands of passes
+/// than guided sampling (cornell, 16 s: Sobol against independent numbers 2.0x less error
+/// for `pt-bsdf`, 1.5x for `pt-footprint`) and which a short pilot cannot measure (4-6
+/// passes per randomisation showed 1.2x for both); where guiding helps it wins by far more
+/// (Veach Ajar, door: 3-10x).
+pub const GUIDED_MARGIN: f64 = 1.3;
 /// Fewest and most pilot passes per set of candidates.
 pub const MIN_BATCHES: usize = 4;
 pub const MAX_BATCHES: usize = 48;
 /// A time budget shorter than this many passes of pt and lt together leaves no room for a
 /// pilot (its least cost is about 7 such pairs): the first unguided candidate renders.
 pub const MIN_BUDGET_PAIRS: f64 = 40.0;
+/// The metric's `R` at a pixel is the mean over the smallest window of these radii (pixels)
+/// whose standard error is at most [`R_RELATIVE_ERROR`] of it (or of a tenth of the image
+/// mean, below which the weight hardly changes).
+pub const R_RADII: [usize; 6] = [1, 2, 4, 8, 16, 32];
+pub const R_RELATIVE_ERROR: f64 = 0.2;
+/// The pilot's passes are dealt to this many folds (pass `b` to fold `b % FOLDS`): the
+/// squared deviations of a fold's passes are weighed with `R` from every other pass
+/// ([`measure`]).
+pub const FOLDS: usize = 4;
 /// Pilot samples per block of pixels on which missing light is measured (see [`measure`]).
 pub const BIAS_BLOCK_SAMPLES: f64 = 64.0;
 
@@ -200,6 +225,18 @@ impl Moments {
         self.n += o.n;
     }
 
+    /// Takes out the passes of `o` (a part of these).
+    fn remove(&mut self, o: &Moments) {
+        let pairs = self.sum.iter_mut().zip(&mut self.sum2);
+        for ((s, s2), (os, os2)) in pairs.zip(o.sum.iter().zip(&o.sum2)) {
+            for c in 0..3 {
+                s[c] -= os[c];
+                s2[c] -= os2[c];
+            }
+        }
+        self.n -= o.n;
+    }
+
     /// Adds `a - b` pixel by pixel.
     fn add_difference(&mut self, a: &Image, b: &Image) {
         let pix = a.pixels.iter().zip(&b.pixels);
@@ -249,6 +286,8 @@ struct Pilot {
     diffs: [Moments; 3],
     /// The second-moment layers ([`crate::moments::LAYERS`]), their means per pass.
     m2: [Moments; moments::LAYERS.len()],
+    /// The three layers' moments per fold ([`FOLDS`]).
+    folds: [[Moments; 3]; FOLDS],
 }
 
 impl Pilot {
@@ -257,6 +296,7 @@ impl Pilot {
             layers: std::array::from_fn(|_| Moments::new(npix)),
             diffs: std::array::from_fn(|_| Moments::new(npix)),
             m2: std::array::from_fn(|_| Moments::new(npix)),
+            folds: std::array::from_fn(|_| std::array::from_fn(|_| Moments::new(npix))),
         }
     }
 
@@ -293,6 +333,9 @@ fn pilot_passes(
         };
         let r = render_prepared(scene, &o, g, Duration::ZERO, StopRule::HalfPass, |_| {});
         for (m, (_, img)) in p.layers.iter_mut().zip(&r.layers) {
+            m.add(img);
+        }
+        for (m, (_, img)) in p.folds[b % FOLDS].iter_mut().zip(&r.layers) {
             m.add(img);
         }
         for (m, (_, img)) in p.m2.iter_mut().zip(r.layers.iter().skip(3)) {
@@ -336,17 +379,19 @@ fn pass_seconds(
 /// later, for every candidate at the same time left ([`Candidate::predict_at`]).
 /// `same_paths`: `reference` is this pilot's own combined layer (so the layers' differences
 /// to it are measured per pass), not an independent pilot's.
+#[allow(clippy::too_many_arguments)]
 fn measure(
     scene: &Scene,
     pilot: &Pilot,
     reference: &Moments,
     metric: &Metric,
+    folds: &[Metric; FOLDS],
     same_paths: bool,
     seconds: [f64; 3],
     guide: &str,
 ) -> Vec<Candidate> {
     let npix = reference.sum.len();
-    let (scale, weight) = (metric.scale, &metric.weight);
+    let scale = metric.scale;
     let k = pilot.layers[0].n as f64;
     let k_ref = reference.n as f64;
     let width = (scene.camera.width as usize).max(1);
@@ -362,12 +407,23 @@ fn measure(
         .enumerate()
         .map(|(l, name)| {
             let layer = &pilot.layers[l];
+            // The per-pass variance, each fold's squared deviations from the mean weighed
+            // with its own weights (from `R` without the fold's passes).
             let mut var = 0.0f64;
-            for i in 0..npix {
-                for c in 0..3 {
-                    var += layer.var(i, c) / (scale * scale) * weight[i][c];
+            for (fold, w) in pilot.folds.iter().zip(folds) {
+                let f = &fold[l];
+                if f.n == 0 {
+                    continue;
+                }
+                for i in 0..npix {
+                    for c in 0..3 {
+                        let m = layer.mean(i, c);
+                        let dev2 = f.sum2[i][c] - 2.0 * m * f.sum[i][c] + f.n as f64 * m * m;
+                        var += dev2.max(0.0) * w.weight[i][c];
+                    }
                 }
             }
+            var /= (k - 1.0).max(1.0) * scale * scale;
             // What the estimate's own pilot paths missed of its second moment: the MIS
             // estimate from every path less its own (crate::moments).
             let e = estimate_index(l);
@@ -442,28 +498,53 @@ impl Metric {
     }
 
     /// The weights from `reference`, the image divided by `scale`.
-    fn with_scale(scene: &Scene, reference: &Moments, scale: f64) -> Self {
+    fn with_scale(width: u32, reference: &Moments, scale: f64) -> Self {
         let npix = reference.sum.len();
-        let width = (scene.camera.width as usize).max(1);
+        let width = (width as usize).max(1);
         let height = npix / width;
-        // The weight read from the reference's 3x3 neighbourhood mean: a pixel's own pilot
-        // mean is heavy-tailed (usually below its expectation where rare bright paths carry
-        // the light), which overweights exactly the pixels guiding helps.
+        // Summed-area tables of the per-pixel means (per channel) and of the variance of
+        // each pixel's luminance mean (channels taken as fully correlated: an upper bound).
+        let sat = |value: &dyn Fn(usize) -> f64| {
+            let mut t = vec![0.0f64; (width + 1) * (height + 1)];
+            for y in 0..height {
+                let mut row = 0.0;
+                for x in 0..width {
+                    row += value(y * width + x);
+                    t[(y + 1) * (width + 1) + x + 1] = t[y * (width + 1) + x + 1] + row;
+                }
+            }
+            t
+        };
+        let n = reference.n.max(1) as f64;
+        let lum = [0.2126, 0.7152, 0.0722];
+        let means: [Vec<f64>; 3] = std::array::from_fn(|c| sat(&|i| reference.mean(i, c)));
+        let var_lum = sat(&|i| {
+            let sd: f64 = (0..3)
+                .map(|c| lum[c] * (reference.var(i, c) / n).sqrt())
+                .sum();
+            sd * sd
+        });
+        let window = |t: &[f64], x0: usize, y0: usize, x1: usize, y1: usize| {
+            let w = width + 1;
+            t[y1 * w + x1] - t[y0 * w + x1] - t[y1 * w + x0] + t[y0 * w + x0]
+        };
         let weight = (0..npix)
             .map(|i| {
                 let (x, y) = (i % width, i / width);
                 let mut acc = [0.0f64; 3];
-                let mut n = 0.0;
-                for yy in y.saturating_sub(1)..(y + 2).min(height) {
-                    for xx in x.saturating_sub(1)..(x + 2).min(width) {
-                        n += 1.0;
-                        for (c, a) in acc.iter_mut().enumerate() {
-                            *a += reference.mean(yy * width + xx, c);
-                        }
+                for &rad in &R_RADII {
+                    let (x0, y0) = (x.saturating_sub(rad), y.saturating_sub(rad));
+                    let (x1, y1) = ((x + rad + 1).min(width), (y + rad + 1).min(height));
+                    let count = ((x1 - x0) * (y1 - y0)) as f64;
+                    acc = std::array::from_fn(|c| window(&means[c], x0, y0, x1, y1) / count);
+                    let mean_lum: f64 = (0..3).map(|c| lum[c] * acc[c]).sum();
+                    let se = window(&var_lum, x0, y0, x1, y1).max(0.0).sqrt() / count;
+                    if se <= R_RELATIVE_ERROR * mean_lum.max(0.1 * scale) {
+                        break;
                     }
                 }
                 acc.map(|a| {
-                    let r = a / n / scale;
+                    let r = a / scale;
                     1.0 / (r * r + 0.01)
                 })
             })
@@ -486,6 +567,28 @@ impl Metric {
         }
         (sum / (self.scale * self.scale) / (3 * self.weight.len()) as f64).max(0.0)
     }
+}
+
+/// The weights of each fold of `pilot` ([`FOLDS`]): `R` from `base` (the other pilots'
+/// combined images pooled) and the pilot's own passes but the fold's, so that no pass is
+/// weighed with an `R` its own noise raised.
+fn fold_metrics(
+    scene: &Scene,
+    base: Option<&Moments>,
+    pilot: &Pilot,
+    scale: f64,
+) -> [Metric; FOLDS] {
+    std::array::from_fn(|k| {
+        let mut r = pilot.layers[0].clone();
+        if let Some(b) = base {
+            r.pool(b);
+        }
+        let fold = &pilot.folds[k][0];
+        if fold.n < r.n {
+            r.remove(fold);
+        }
+        Metric::with_scale(scene.camera.width, &r, scale)
+    })
 }
 
 /// The second-moment layers' estimate for the image layer `l` (combined, pt, lt).
@@ -684,16 +787,14 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         }
     }
     // The metric's weights `1 / (R² + 0.01)` for each pilot's candidates read `R` from the
-    // other pilots' combined images, pooled, never from the pilot's own: a pilot's own
+    // other pilots' combined images pooled with the pilot's own passes but those of the
+    // fold being weighed ([`fold_metrics`]); what exceeds a candidate's own second moment
+    // and its missing light are weighed with the other pilots' images alone. A pilot's own
     // image is correlated with its candidates' noise (a bright sample raises both `R` and
-    // the variance at its pixel, and the noisiest pixels get the least weight). Measured
-    // with the unguided pilot's `R` for every candidate: on door `pt-bsdf`, whose own pilot
-    // that is, predicted 0.063 where 16 s measure 0.81 (0.57-0.73 with the MIS moments);
-    // with a guided pilot's own `R` its candidates came out 3-9x too low; on Veach Ajar
-    // the guided candidates 1.5-2.6x too high, so `auto` chose the combined image. With
-    // the other pilots' `R` it chose `pt-footprint` on Veach Ajar on every seed (README
-    // "auto against the fixed methods"). Without a guided pilot the unguided pilot's own
-    // image is all there is.
+    // the variance at its pixel, and the noisiest pixels get the least weight): with a
+    // guided pilot's own `R` its candidates came out 3-9x too low. With the other pilots'
+    // `R` alone the guided candidates, weighed with the noisy unguided image, came out
+    // 1.5-4x too high (door `lt-footprint`, Veach Ajar `pt-footprint`).
     let others = |skip: Option<usize>| -> Option<Moments> {
         let mut pooled: Option<Moments> = skip.map(|_| reference.clone());
         for (j, (_, p, _)) in pilots.iter().enumerate() {
@@ -714,12 +815,23 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         all_pooled.pool(&p.layers[0]);
     }
     let scale = Metric::mean_luminance(&all_pooled);
-    let metric = Metric::with_scale(scene, &others(None).unwrap_or(reference.clone()), scale);
-    let mut all = measure(scene, &pilot, &reference, &metric, true, secs, "bsdf");
+    let base = others(None);
+    let metric = Metric::with_scale(
+        scene.camera.width,
+        base.as_ref().unwrap_or(&reference),
+        scale,
+    );
+    let folds = fold_metrics(scene, base.as_ref(), &pilot, scale);
+    let mut all = measure(
+        scene, &pilot, &reference, &metric, &folds, true, secs, "bsdf",
+    );
     for (j, (gname, p, secs)) in pilots.iter().enumerate() {
         let rest = others(Some(j)).expect("the unguided pilot");
-        let own = Metric::with_scale(scene, &rest, scale);
-        all.extend(measure(scene, p, &reference, &own, false, *secs, gname));
+        let own = Metric::with_scale(scene.camera.width, &rest, scale);
+        let folds = fold_metrics(scene, Some(&rest), p, scale);
+        all.extend(measure(
+            scene, p, &reference, &own, &folds, false, *secs, gname,
+        ));
         // What the unguided candidates' own pilot paths missed, seen from the guided paths
         // (crate::moments): the guided pilot's MIS estimate of each unguided estimate's
         // second moment less the unguided pilot's own, weighed without that guided pilot's
@@ -740,6 +852,21 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     }
     all.retain(|c| wanted(&c.method));
     all.sort_by(|a, b| a.predicted.total_cmp(&b.predicted));
+    // A guided winner must beat the best unguided candidate by GUIDED_MARGIN.
+    let is_guided = |c: &Candidate| Method::parse(&c.method).is_ok_and(|m| m.guided());
+    if let Some(u) = all.iter().position(|c| !is_guided(c)) {
+        let first = &all[0];
+        if is_guided(first) && all[u].predicted < GUIDED_MARGIN * first.predicted {
+            notes.push(format!(
+                "{} kept: {} predicted only {:.2}x better (a guided method must be {GUIDED_MARGIN}x)",
+                all[u].method,
+                first.method,
+                all[u].predicted / first.predicted
+            ));
+            let c = all.remove(u);
+            all.insert(0, c);
+        }
+    }
     let Some(best) = all.first().cloned() else {
         return Choice {
             method: spec.candidates[0],
@@ -795,5 +922,50 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         candidates: all,
         pilot: start.elapsed(),
         guidance,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The metric's `R` widens its window where the pilot's mean is noisy and keeps 3x3
+    /// where it is not. A 64x64 image: the left half a constant 1 from passes that agree,
+    /// the right half 0.5 on average from passes alternating 0 and 1, with one pixel whose
+    /// first pass read 160 (a firefly: a mean of 20). A 3x3 window would read R = 2.7
+    /// beside the firefly (a weight 25x too small); the widened window reads close to 0.5.
+    /// Left of the edge the weight is the constant's.
+    #[test]
+    fn r_widens_its_window_where_the_pilot_is_noisy() {
+        let (w, h, n) = (64usize, 64usize, 8usize);
+        let mut m = Moments::new(w * h);
+        let spike = 40 * w + 48;
+        for pass in 0..n {
+            let pixels = (0..w * h)
+                .map(|i| {
+                    let v = if i % w < w / 2 {
+                        1.0
+                    } else if i == spike {
+                        if pass == 0 { 20.0 * n as f32 } else { 0.0 }
+                    } else {
+                        ((pass + i) % 2) as f32
+                    };
+                    Rgb::splat(v)
+                })
+                .collect();
+            m.add(&Image {
+                width: w as u32,
+                height: h as u32,
+                pixels,
+            });
+        }
+        let metric = Metric::with_scale(w as u32, &m, 1.0);
+        let r_of = |i: usize| (1.0 / metric.weight[i][0] - 0.01).max(0.0).sqrt();
+        // Beside the firefly.
+        let r = r_of(spike + 1);
+        assert!((r - 0.5).abs() < 0.15, "R beside the firefly {r}");
+        // In the constant half, away from the edge: the constant.
+        let r = r_of(20 * w + 10);
+        assert!((r - 1.0).abs() < 1e-9, "R of the constant {r}");
     }
 }

@@ -93,6 +93,9 @@ pub struct Vertex {
     pub depth: u32,
     /// Throughput arriving at this vertex.
     pub beta: Rgb,
+    /// The product of the Russian roulette survival probabilities on the way here (what
+    /// `beta` was divided by); 1 before any roulette.
+    pub survival: f32,
 }
 
 /// How the walk arrived at the current vertex (or left the scene): the previous vertex and
@@ -201,6 +204,7 @@ pub fn walk<'a, V: Visitor>(
             delta: true,
         },
         expected_ref: 0.0,
+        survival: 1.0,
         depth: 1,
     };
     walk_from(scene, start, sampler, state, rng, visitor, path);
@@ -217,6 +221,8 @@ struct PathState {
     from: Arrival,
     /// Guided Russian roulette: what the first estimated vertex expected the path to gather.
     expected_ref: f32,
+    /// The product of the roulette's survival probabilities so far ([`Vertex::survival`]).
+    survival: f32,
     /// Depth of the vertex the next segment reaches.
     depth: u32,
 }
@@ -250,6 +256,7 @@ fn walk_from<'a, V: Visitor>(
             wo: -p.dir,
             depth,
             beta: p.beta,
+            survival: p.survival,
         };
         visitor.reached(&v, &p.from);
         if depth == start.max_vertex_depth {
@@ -325,6 +332,7 @@ fn walk_from<'a, V: Visitor>(
             }
             p.beta /= q;
             p.beta_rr /= q;
+            p.survival *= q;
         }
     }
 }

@@ -152,13 +152,14 @@ pub struct Shared<'f> {
 }
 
 impl Shared<'_> {
-    /// Splats a connection of unweighted value `v` at `raster`, made by `st`.
+    /// Splats a connection of unweighted value `v` at `raster`, made by `st` on a light path
+    /// of roulette survival `survival`.
     #[inline]
-    fn splat(&mut self, cam: &Camera, raster: Vec2, v: Rgb, st: &Strategies) {
+    fn splat(&mut self, cam: &Camera, raster: Vec2, v: Rgb, st: &Strategies, survival: f32) {
         let (f, w, h) = (&cam.filter, cam.width, cam.height);
         self.combined.splat(f, w, h, raster, v * st.weight());
         if let Some(m) = self.moments.as_deref_mut() {
-            let t = crate::moments::terms(v, st, v, false);
+            let t = crate::moments::terms(v, st, v, false, survival);
             for (list, t) in m.iter_mut().zip(t) {
                 list.splat_second_moment(f, w, h, raster, t);
             }
@@ -205,7 +206,7 @@ pub fn trace<'a, F: Features, W: LightShare>(
                 lt.splat(&cam.filter, w, h, conn.raster, v);
                 if let Some(s) = share.as_mut() {
                     let st = weights.light_seen(scene, conn.dir_to_camera);
-                    s.splat(cam, conn.raster, v, &st);
+                    s.splat(cam, conn.raster, v, &st, 1.0);
                 }
             }
         }
@@ -278,7 +279,7 @@ impl<W: LightShare, F: Features> Visitor for LightVisitor<'_, '_, W, F> {
         self.lt.splat(&cam.filter, w, h, conn.raster, value);
         if let Some(s) = self.share.as_mut() {
             let st = self.weights.connection(scene, v, wi);
-            s.splat(cam, conn.raster, value, &st);
+            s.splat(cam, conn.raster, value, &st, v.survival);
         }
     }
 

@@ -300,12 +300,13 @@ impl Learning {
 }
 
 impl<S: CameraShare, F: Features> CameraVisitor<'_, S, F> {
-    /// A contribution of unweighted value `value`, made by `st`, of which the path tracer
-    /// kept `own`, adds to the second-moment layers when they are asked for.
+    /// A contribution of unweighted value `value`, made by `st` on a path of roulette
+    /// survival `survival`, of which the path tracer kept `own`, adds to the second-moment
+    /// layers when they are asked for.
     #[inline]
-    fn moments(&mut self, value: Rgb, st: &Strategies, own: Rgb) {
+    fn moments(&mut self, value: Rgb, st: &Strategies, own: Rgb, survival: f32) {
         if self.share.moments() {
-            let t = crate::moments::terms(value, st, own, true);
+            let t = crate::moments::terms(value, st, own, true, survival);
             for (m, t) in self.out.m2.iter_mut().zip(t) {
                 *m += t;
             }
@@ -366,7 +367,7 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
         if S::ACTIVE {
             let st = self.share.light_hit(self.scene, li, v);
             self.out.share += v.beta * le * st.weight();
-            self.moments(v.beta * le, &st, c);
+            self.moments(v.beta * le, &st, c, v.survival);
         }
     }
 
@@ -417,7 +418,7 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
             } else {
                 let st = self.share.nee(scene, li as u32, v, &ls);
                 self.out.share += contrib * st.weight();
-                self.moments(contrib, &st, contrib * w_pt);
+                self.moments(contrib, &st, contrib * w_pt, v.survival);
             }
         }
     }
