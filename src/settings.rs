@@ -241,6 +241,10 @@ pub struct GuideParams {
     /// is split into `r` branches in expectation, at most this many, each with its share of
     /// the throughput (`integrators/src/walk.rs`); 1 never splits.
     pub guided_split: u32,
+    /// The view pass weighs each importon path by `m / (L + 0.1 m)`, `L` its pixel's
+    /// luminance in a short unguided pre-render and `m` the mean: the importance map then
+    /// guides light paths where the relative error is (`integrators/src/target.rs`).
+    pub relative_importance: bool,
     pub radius_rule: RadiusRule,
     /// Side of the classic sampler's grid per hemisphere (Jensen 1995).
     #[serde(rename = "grid")]
@@ -285,6 +289,7 @@ impl Default for GuideParams {
             learn_p_bsdf: false,
             guided_rr: true,
             guided_split: 4,
+            relative_importance: true,
             radius_rule: RadiusRule::SolidAngle,
             grid_side: 8,
             cache: true,

@@ -160,6 +160,7 @@ fn no_particle_surfaces_skips_the_passes_and_changes_nothing() {
             seed: o.seed,
             soft_glossy_max: mirrors.maps.soft_glossy_max,
             specialise: false,
+            target: None,
         };
         let g = footprint_integrators::maps::Guidance::build(
             &mirrors,

@@ -197,6 +197,7 @@ fn pass_settings(paths: usize, seed: u64) -> PassSettings {
         seed,
         soft_glossy_max: 100.0,
         specialise: true,
+        target: None,
     }
 }
 

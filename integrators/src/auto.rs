@@ -8,8 +8,8 @@
 //! * **Prediction.** For candidate `m` with per-pass variance `σ²_m` per pixel and channel, a
 //!   pass time `t_m` and the time left `T`: `E_m = mean[(σ²_m t_m / T + b²_m) / (R² + 0.01)]`,
 //!   everything divided by `R`'s mean luminance as `compare` does. `R` is a combined mean
-//!   over a window around the pixel, the smallest of [`R_RADII`] whose standard error is at
-//!   most [`R_RELATIVE_ERROR`] of it: a pixel's own pilot mean is heavy-tailed and usually
+//!   over a window around the pixel, the smallest whose standard error is at most 20% of it
+//!   ([`crate::window`]): a pixel's own pilot mean is heavy-tailed and usually
 //!   low where rare bright paths carry the light, and `1 / (R² + 0.01)` of a low `R`
 //!   overweights exactly the pixels guiding helps (door with a 3x3 window: `lt-footprint`
 //!   predicted 4x its error). `R` pools every pilot's combined image, but a pilot's passes
@@ -55,7 +55,8 @@ use crate::maps::{Guidance, Passes, run_passes};
 use crate::method::Method;
 use crate::moments;
 use crate::render::{
-    RenderOptions, RenderResult, StopRule, guidance, pass_settings, render_prepared,
+    RenderOptions, RenderResult, StopRule, guidance, independent_pass, pass_settings,
+    render_prepared, with_target,
 };
 use crate::skips::particles_stored;
 use footprint::Rgb;
@@ -86,11 +87,6 @@ pub const MAX_BATCHES: usize = 48;
 /// A time budget shorter than this many passes of pt and lt together leaves no room for a
 /// pilot (its least cost is about 7 such pairs): the first unguided candidate renders.
 pub const MIN_BUDGET_PAIRS: f64 = 40.0;
-/// The metric's `R` at a pixel is the mean over the smallest window of these radii (pixels)
-/// whose standard error is at most [`R_RELATIVE_ERROR`] of it (or of a tenth of the image
-/// mean, below which the weight hardly changes).
-pub const R_RADII: [usize; 6] = [1, 2, 4, 8, 16, 32];
-pub const R_RELATIVE_ERROR: f64 = 0.2;
 /// The pilot's passes are dealt to this many folds (pass `b` to fold `b % FOLDS`): the
 /// squared deviations of a fold's passes are weighed with `R` from every other pass
 /// ([`measure`]).
@@ -324,17 +320,8 @@ fn pilot_passes(
         if b >= min_batches && until.is_none_or(|u| Instant::now() >= u) {
             break;
         }
-        let o = RenderOptions {
-            method,
-            spp: 1,
-            time: None,
-            seed: opts.seed ^ 0xa070_0000_0000_0000 ^ (b as u64 + 1),
-            passes: crate::PassSelection::ALL,
-            auto: None,
-            moments: true,
-            ..opts.clone()
-        };
-        let r = render_prepared(scene, &o, g, Duration::ZERO, StopRule::HalfPass, |_| {});
+        let stream = 0xa070_0000_0000_0000 ^ (b as u64 + 1);
+        let r = independent_pass(scene, opts, method, g, stream, true);
         for (m, (_, img)) in p.layers.iter_mut().zip(&r.layers) {
             m.add(img);
         }
@@ -500,52 +487,20 @@ impl Metric {
         (luminance(m / npix as f32) as f64).max(1e-20)
     }
 
-    /// The weights from `reference`, the image divided by `scale`.
+    /// The weights from `reference`, the image divided by `scale`: `R` read over a window
+    /// widened where the pilot's mean is noisy ([`crate::window`]).
     fn with_scale(width: u32, reference: &Moments, scale: f64) -> Self {
-        let npix = reference.sum.len();
-        let width = (width as usize).max(1);
-        let height = npix / width;
-        // Summed-area tables of the per-pixel means (per channel) and of the variance of
-        // each pixel's luminance mean (channels taken as fully correlated: an upper bound).
-        let sat = |value: &dyn Fn(usize) -> f64| {
-            let mut t = vec![0.0f64; (width + 1) * (height + 1)];
-            for y in 0..height {
-                let mut row = 0.0;
-                for x in 0..width {
-                    row += value(y * width + x);
-                    t[(y + 1) * (width + 1) + x + 1] = t[y * (width + 1) + x + 1] + row;
-                }
-            }
-            t
-        };
         let n = reference.n.max(1) as f64;
-        let lum = [0.2126, 0.7152, 0.0722];
-        let means: [Vec<f64>; 3] = std::array::from_fn(|c| sat(&|i| reference.mean(i, c)));
-        let var_lum = sat(&|i| {
-            let sd: f64 = (0..3)
-                .map(|c| lum[c] * (reference.var(i, c) / n).sqrt())
-                .sum();
-            sd * sd
-        });
-        let window = |t: &[f64], x0: usize, y0: usize, x1: usize, y1: usize| {
-            let w = width + 1;
-            t[y1 * w + x1] - t[y0 * w + x1] - t[y1 * w + x0] + t[y0 * w + x0]
-        };
-        let weight = (0..npix)
-            .map(|i| {
-                let (x, y) = (i % width, i / width);
-                let mut acc = [0.0f64; 3];
-                for &rad in &R_RADII {
-                    let (x0, y0) = (x.saturating_sub(rad), y.saturating_sub(rad));
-                    let (x1, y1) = ((x + rad + 1).min(width), (y + rad + 1).min(height));
-                    let count = ((x1 - x0) * (y1 - y0)) as f64;
-                    acc = std::array::from_fn(|c| window(&means[c], x0, y0, x1, y1) / count);
-                    let mean_lum: f64 = (0..3).map(|c| lum[c] * acc[c]).sum();
-                    let se = window(&var_lum, x0, y0, x1, y1).max(0.0).sqrt() / count;
-                    if se <= R_RELATIVE_ERROR * mean_lum.max(0.1 * scale) {
-                        break;
-                    }
-                }
+        let means = crate::window::window_means(
+            width as usize,
+            reference.sum.len(),
+            &|i, c| reference.mean(i, c),
+            &|i, c| reference.var(i, c) / n,
+            0.1 * scale,
+        );
+        let weight = means
+            .iter()
+            .map(|acc| {
                 acc.map(|a| {
                     let r = a / scale;
                     1.0 / (r * r + 0.01)
@@ -739,7 +694,8 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         let gd = if share {
             let passes = shared.get_or_insert_with(|| {
                 let t = Instant::now();
-                let p = run_passes(scene, &both, &o.guide_params, &pass_settings(scene, &o));
+                let pass = with_target(scene, &o, pass_settings(scene, &o));
+                let p = run_passes(scene, &both, &o.guide_params, &pass);
                 passes_s = t.elapsed().as_secs_f64();
                 p
             });

@@ -72,6 +72,7 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
             seed: 1,
             soft_glossy_max: door.maps.soft_glossy_max,
             specialise: true,
+            target: None,
         };
         let pass = light_pass(&door, &s, &bsdf);
         let t = Instant::now();
@@ -92,6 +93,7 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
         seed: 1,
         soft_glossy_max: door.maps.soft_glossy_max,
         specialise: true,
+        target: None,
     };
     for (kind, pass) in [
         (MapKind::Photons, light_pass(&door, &s, &bsdf)),
@@ -164,6 +166,7 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
             seed: 1,
             soft_glossy_max: door.maps.soft_glossy_max,
             specialise: true,
+            target: None,
         };
         // (method, cache, raster): footprints cached are measured sampled from their caps
         // (raster 0) and rasterised (the scene's `raster`).

@@ -35,7 +35,9 @@ pub mod render;
 pub mod scene_hash;
 pub mod shard;
 pub mod skips;
+pub mod target;
 pub mod walk;
+pub mod window;
 
 pub use method::Method;
 pub use render::{

@@ -121,6 +121,13 @@ struct GuideParamArgs {
     /// guide.guided_split, else 4]
     #[arg(long)]
     guided_split: Option<u32>,
+    /// The view pass weighs each importon path by m / (L + 0.1 m), L its pixel's luminance
+    /// in a short unguided pre-render (4 passes of the combined image) and m the image's
+    /// mean: light paths are guided where the relative error is (on), or by the camera's
+    /// importance alone (off); methods whose light paths are guided only [default:
+    /// guide.relative_importance, else on]
+    #[arg(long, value_parser = ["on", "off"])]
+    relative_importance: Option<String>,
     /// Side of the per-hemisphere table of each cached region's density that those guided
     /// MIS weights read when footprints are sampled from their caps (--raster 0); 0 reads
     /// the exact density (slower, the same image in expectation)
@@ -177,6 +184,9 @@ impl GuideParamArgs {
         }
         if let Some(v) = self.guided_split {
             p.guided_split = v;
+        }
+        if let Some(v) = &self.relative_importance {
+            p.relative_importance = v == "on";
         }
         if let Some(v) = self.mis_table {
             p.mis_table = v;
@@ -342,7 +352,7 @@ enum Command {
         /// [default: pt and lt with each guide, and combined-footprint]
         #[arg(long, value_delimiter = ',')]
         methods: Option<Vec<String>>,
-        /// Parameter sweep NAME=V1,V2,... over k_p, k_r, p_bsdf, learn_p_bsdf (0, 1), guided_rr (0, 1), guided_split, k_g, grid, region_particles,
+        /// Parameter sweep NAME=V1,V2,... over k_p, k_r, p_bsdf, learn_p_bsdf (0, 1), guided_rr (0, 1), guided_split, relative_importance (0, 1), k_g, grid, region_particles,
         /// region_seeds, min_depth, mis_table, raster, photons, importons, map_rounds,
         /// map_grow (0, 1) or sequence (sobol, independent): every method is run once per value [default methods for a sweep: pt-footprint,lt-footprint]
         #[arg(long)]
@@ -945,6 +955,7 @@ fn compare_variants(
                 "learn_p_bsdf" => opts.guide_params.learn_p_bsdf = num != 0.0,
                 "guided_rr" => opts.guide_params.guided_rr = num != 0.0,
                 "guided_split" => opts.guide_params.guided_split = num as u32,
+                "relative_importance" => opts.guide_params.relative_importance = num != 0.0,
                 "k_g" => opts.guide_params.k_g_side = num as usize,
                 "grid" => opts.guide_params.grid_side = num as usize,
                 "photons" => maps.photons = num as usize,
@@ -957,7 +968,7 @@ fn compare_variants(
                 "map_rounds" => maps.rounds = num as u32,
                 "map_grow" => maps.grow = num != 0.0,
                 other => bail!(
-                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, learn_p_bsdf (0 or 1), guided_rr (0 or 1), guided_split, k_g, grid, region_particles, region_seeds, min_depth, mis_table, raster, photons, importons, map_rounds, map_grow (0 or 1) or sequence)"
+                    "--sweep: unknown parameter '{other}' (expected k_p, k_r, p_bsdf, learn_p_bsdf (0 or 1), guided_rr (0 or 1), guided_split, relative_importance (0 or 1), k_g, grid, region_particles, region_seeds, min_depth, mis_table, raster, photons, importons, map_rounds, map_grow (0 or 1) or sequence)"
                 ),
             }
             out.push(make(
@@ -996,6 +1007,7 @@ fn maps_command(
         seed: seed.unwrap_or(scene.settings.seed),
         soft_glossy_max: scene.maps.soft_glossy_max,
         specialise: true,
+        target: None,
     };
     println!(
         "maximum query distance {:.4} (scene units)",
@@ -1219,7 +1231,7 @@ fn render_command(
         (
             "footprint/guide_params".to_string(),
             format!(
-                "k_p={} k_g={}x{} k_r={} p_bsdf={} learn_p_bsdf={} guided_rr={} guided_split={} radius_rule={} grid={}x{} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} mis_table={} raster={} photons={} importons={} max_dist={}",
+                "k_p={} k_g={}x{} k_r={} p_bsdf={} learn_p_bsdf={} guided_rr={} guided_split={} relative_importance={} radius_rule={} grid={}x{} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} mis_table={} raster={} photons={} importons={} max_dist={}",
                 p.k_p,
                 p.k_g_side,
                 p.k_g_side,
@@ -1228,6 +1240,7 @@ fn render_command(
                 if p.learn_p_bsdf { "on" } else { "off" },
                 if p.guided_rr { "on" } else { "off" },
                 p.guided_split,
+                if p.relative_importance { "on" } else { "off" },
                 p.radius_rule.name(),
                 p.grid_side,
                 p.grid_side,

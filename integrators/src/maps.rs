@@ -138,6 +138,10 @@ pub fn run_passes(
         1
     };
     let mut out = Passes::default();
+    // The relative importance target's pre-render counts as the view pass's time.
+    if need_view {
+        out.view_time += pass.target.as_ref().map_or(Duration::ZERO, |t| t.time);
+    }
     // The guidance of the previous round (both maps and caches; none in the first round).
     let mut previous: Option<Guidance> = None;
     let both = Method {

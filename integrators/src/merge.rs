@@ -41,7 +41,7 @@ pub fn settings_key(opts: &RenderOptions, scene: &Scene) -> String {
     let p = &opts.guide_params;
     let m = &scene.maps;
     format!(
-        "method={} sequence={} film={:?} resolution={}x{} max_depth={} k_p={} k_g={} k_r={} p_bsdf={} learn_p_bsdf={} guided_rr={} guided_split={} radius_rule={} grid={} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} mis_table={} raster={} photons={} importons={} max_dist={} soft_glossy_max={}",
+        "method={} sequence={} film={:?} resolution={}x{} max_depth={} k_p={} k_g={} k_r={} p_bsdf={} learn_p_bsdf={} guided_rr={} guided_split={} relative_importance={} radius_rule={} grid={} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} mis_table={} raster={} photons={} importons={} max_dist={} soft_glossy_max={}",
         opts.method.name(),
         opts.sequence.name(),
         opts.film,
@@ -55,6 +55,7 @@ pub fn settings_key(opts: &RenderOptions, scene: &Scene) -> String {
         p.learn_p_bsdf,
         p.guided_rr,
         p.guided_split,
+        p.relative_importance,
         p.radius_rule.name(),
         p.grid_side,
         if p.cache { "on" } else { "off" },

@@ -58,6 +58,9 @@ pub struct PassSettings {
     /// Run the path loop compiled for the scene's effects (else the general one; the same
     /// particles either way, `footprint::scene::features`).
     pub specialise: bool,
+    /// The view pass's starting weights per pixel (relative importance,
+    /// [`crate::target`]); `None`: every importon path starts at `1 / N`.
+    pub target: Option<std::sync::Arc<crate::target::ImportanceTarget>>,
 }
 
 impl PassSettings {
@@ -295,11 +298,12 @@ pub fn view_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> Pa
     let all = run_chunks(0..s.paths, |i, out, state| {
         let mut rng = Rng::new(s.seed, DOMAIN_VIEW_PASS, i as u64);
         let raster = rng.uniform2() * size;
+        let w = inv_n * s.target.as_ref().map_or(1.0, |t| t.at(raster));
         let start = Start {
             origin: cam.position,
             dir: cam.ray_dir(raster),
-            beta: Rgb::splat(inv_n),
-            beta0: Rgb::splat(inv_n),
+            beta: Rgb::splat(w),
+            beta0: Rgb::splat(w),
             mode: TransportMode::Radiance,
             max_vertex_depth: s.max_depth,
             rr_depth: s.rr_depth,

@@ -275,13 +275,14 @@ pub fn guidance(scene: &Scene, opts: &RenderOptions, heap: &dyn Fn() -> Option<u
         scene,
         &opts.method,
         &opts.guide_params,
-        &pass_settings(scene, opts),
+        &with_target(scene, opts, pass_settings(scene, opts)),
         budget,
         heap,
     )
 }
 
-/// The particle passes' settings of a render with `opts`.
+/// The particle passes' settings of a render with `opts` (no importance target: see
+/// [`with_target`]).
 pub fn pass_settings(scene: &Scene, opts: &RenderOptions) -> PassSettings {
     PassSettings {
         paths: 0,
@@ -290,7 +291,67 @@ pub fn pass_settings(scene: &Scene, opts: &RenderOptions) -> PassSettings {
         seed: opts.seed,
         soft_glossy_max: scene.maps.soft_glossy_max,
         specialise: opts.specialise,
+        target: None,
     }
+}
+
+/// `pass` with the view pass's relative importance target ([`importance_target`]) when
+/// `opts`'s method guides light paths by an importance map and `relative_importance` is on.
+pub fn with_target(scene: &Scene, opts: &RenderOptions, pass: PassSettings) -> PassSettings {
+    let m = &opts.method;
+    let wanted = opts.guide_params.relative_importance
+        && m.guide.uses_particles()
+        && m.integrator.paths().light;
+    PassSettings {
+        target: wanted
+            .then(|| importance_target(scene, opts))
+            .flatten()
+            .map(std::sync::Arc::new),
+        ..pass
+    }
+}
+
+/// One pass (1 sample per pixel) of `method` with `opts`' settings, its random numbers
+/// seeded from `opts.seed ^ stream` (an independent pass for each `stream`); `moments`
+/// asks for the second-moment layers ([`crate::moments`]). `auto`'s pilot and the
+/// relative importance target render such passes.
+pub fn independent_pass(
+    scene: &Scene,
+    opts: &RenderOptions,
+    method: Method,
+    g: &Guidance,
+    stream: u64,
+    moments: bool,
+) -> RenderResult {
+    let o = RenderOptions {
+        method,
+        spp: 1,
+        time: None,
+        seed: opts.seed ^ stream,
+        passes: crate::PassSelection::ALL,
+        auto: None,
+        moments,
+        ..opts.clone()
+    };
+    render_prepared(scene, &o, g, Duration::ZERO, StopRule::HalfPass, |_| {})
+}
+
+/// The relative importance target ([`crate::target`]): [`crate::target::TARGET_PASSES`]
+/// independent passes of the unguided combined image (both directions: neither misses
+/// what the other finds), its time in the target. `None` when the image is black.
+pub fn importance_target(
+    scene: &Scene,
+    opts: &RenderOptions,
+) -> Option<crate::target::ImportanceTarget> {
+    let start = Instant::now();
+    let method = Method::from_names("combined", "bsdf").expect("registered");
+    let none = Guidance::default();
+    let passes: Vec<footprint::film::Image> = (0..crate::target::TARGET_PASSES)
+        .map(|k| independent_pass(scene, opts, method, &none, 0x7a67 << 48 | k as u64, false).image)
+        .collect();
+    let mut t = crate::target::ImportanceTarget::from_passes(&passes)?;
+    t.time = start.elapsed();
+    Some(t)
 }
 
 /// [`render`], with `heap` reporting the heap bytes in use (a counting allocator) so that
