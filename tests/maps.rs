@@ -853,6 +853,22 @@ fn sparse_photon_maps_grow_within_a_budget() {
         time: Some(10_000.0),
         ..Default::default()
     };
+    // A light tracer that wins keeps the pilot's photon map as it is: it never reads it.
+    let lt = footprint_integrators::RenderOptions {
+        method: footprint_integrators::Method::parse("lt-footprint").unwrap(),
+        time: Some(10_000.0),
+        ..Default::default()
+    };
+    let piloted = Guidance::build_within(&door, &both, &params, &pass, None, &|| None);
+    let kept = footprint_integrators::render::chosen_guidance(
+        &door,
+        &lt,
+        Some(piloted),
+        Some(10_000.0),
+        &|| None,
+    );
+    assert_eq!(kept.photons.as_ref().unwrap().pass.stats.paths, 20_000);
+    assert!(!kept.summaries.iter().any(|s| s.contains("grown")));
     let left = Some(10_000.0);
     let g = footprint_integrators::render::chosen_guidance(
         &door,

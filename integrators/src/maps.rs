@@ -336,7 +336,12 @@ impl Guidance {
         // map's cache; the light pass comes back out of the photon map.
         let times = (passes.light_time, passes.view_time);
         let copy_start = Instant::now();
-        let seeds = passes.view.as_ref().map(|v| v.seeds());
+        let seeds = method
+            .integrator
+            .paths()
+            .camera
+            .then(|| passes.view.as_ref().map(|v| v.seeds()))
+            .flatten();
         let copying = copy_start.elapsed();
         let mut first = Self::from_passes(scene, method, params, passes, heap);
         first.timings.map_builds += copying;
@@ -345,7 +350,8 @@ impl Guidance {
 
     /// Grows a sparse photon map of maps already built ([`Guidance::build_within`]; `auto`
     /// grows its pilot's maps when a method that reads the photon map wins): `seeds` are the
-    /// view pass's points (the photon cache's seeds), `times` the light and view passes'
+    /// view pass's points (the photon cache's seeds; `None`: read from the importance map
+    /// held, only when the map grows), `times` the light and view passes'
     /// times, `budget` the time the growth is a share of. Unchanged when the photon cache
     /// is not sparse or no doubling fits; else the photon map and its cache are built again
     /// from the grown light pass (the first builds' time counts), the importance map and
@@ -362,7 +368,9 @@ impl Guidance {
         budget: Duration,
         heap: &dyn Fn() -> Option<usize>,
     ) -> Self {
-        if !may_grow(scene, params) {
+        // Only a method that reads the photon map grows it (auto's pilot builds both maps
+        // for the combined image, also when a light tracer wins).
+        if !may_grow(scene, params) || !method.integrator.paths().camera {
             return self;
         }
         let (Some(photons), Some(cache)) = (&self.photons, &self.photon_cache) else {
@@ -386,6 +394,8 @@ impl Guidance {
         if factor == 1 {
             return self;
         }
+        // Without `seeds`, the view pass's points come from the importance map held.
+        let seeds = seeds.or_else(|| self.importons.as_ref().map(|m| m.pass.seeds()));
         let light = self.photons.take().expect("checked above").pass;
         self.photon_cache = None;
         let s = PassSettings {

@@ -415,12 +415,11 @@ pub fn chosen_guidance(
 ) -> Guidance {
     match (piloted, left) {
         (Some(g), Some(left)) if scene.maps.grow => {
-            let seeds = g.importons.as_ref().map(|m| m.pass.seeds());
             let times = (g.timings.light_pass, g.timings.view_pass);
             let left = Duration::from_secs_f64(left.max(0.0));
             let (method, params) = (&chosen.method, &chosen.guide_params);
             let pass = pass_settings(scene, chosen);
-            g.grow_within(scene, method, params, &pass, seeds, times, left, heap)
+            g.grow_within(scene, method, params, &pass, None, times, left, heap)
         }
         (Some(g), _) => g,
         (None, _) => guidance(scene, chosen, heap),
