@@ -90,3 +90,79 @@ pub fn power_heuristic(pdf_a: f32, pdf_b: f32) -> f32 {
 pub fn safe_sqrt(x: f32) -> f32 {
     x.max(0.0).sqrt()
 }
+
+/// `atan2(y, x)` in `[-π, π]`, inlined: an odd minimax polynomial of degree 15 for the
+/// arctangent on `[0, 1]` and the octant identities. Largest error 1.4e-7 rad (libm's
+/// `atan2f`, an out-of-line call, is within 1 ulp, 2.4e-7 near π): what the guide grids'
+/// cell index needs at every guided event and for every rasterised footprint. `(0, 0)`
+/// gives 0, like `atan2`.
+#[inline(always)]
+pub fn atan2_fast(y: f32, x: f32) -> f32 {
+    const C: [f32; 8] = [
+        0.999_999_34,
+        -0.333_298_6,
+        0.199_465_66,
+        -0.139_086_29,
+        0.096_421_95,
+        -0.055_912_29,
+        0.021_862_93,
+        -0.004_054_559,
+    ];
+    let (ax, ay) = (x.abs(), y.abs());
+    if x.is_nan() || y.is_nan() {
+        return f32::NAN;
+    }
+    let (lo, hi) = (ax.min(ay), ax.max(ay));
+    if hi == 0.0 {
+        return 0.0;
+    }
+    let a = lo / hi;
+    let t = a * a;
+    let mut p = C[7];
+    for &c in C[..7].iter().rev() {
+        p = p.mul_add(t, c);
+    }
+    let mut r = a * p;
+    if ay > ax {
+        r = std::f32::consts::FRAC_PI_2 - r;
+    }
+    if x < 0.0 {
+        r = std::f32::consts::PI - r;
+    }
+    if y.is_sign_negative() { -r } else { r }
+}
+
+#[cfg(test)]
+mod atan2_tests {
+    use super::atan2_fast;
+
+    /// Against the double-precision arctangent on a dense circle, the axes and the
+    /// diagonals: the bound is the polynomial's fitted error (1.4e-7) plus the rounding of
+    /// the inputs and of the octant identities (a few ulp of π).
+    #[test]
+    fn atan2_fast_matches_atan2() {
+        let mut worst = 0.0f64;
+        for k in 0..200_000 {
+            let phi = (k as f64 / 200_000.0) * std::f64::consts::TAU - std::f64::consts::PI;
+            for r in [1e-3f64, 1.0, 7.5] {
+                let (y, x) = ((r * phi.sin()) as f32, (r * phi.cos()) as f32);
+                let want = (y as f64).atan2(x as f64);
+                worst = worst.max((atan2_fast(y, x) as f64 - want).abs());
+            }
+        }
+        assert!(worst < 6e-7, "largest error {worst}");
+        for (y, x) in [
+            (0.0f32, 1.0f32),
+            (1.0, 0.0),
+            (0.0, -1.0),
+            (-1.0, 0.0),
+            (1.0, 1.0),
+            (-2.0, -2.0),
+        ] {
+            let want = (y as f64).atan2(x as f64);
+            assert!((atan2_fast(y, x) as f64 - want).abs() < 6e-7, "({y}, {x})");
+        }
+        assert_eq!(atan2_fast(0.0, 0.0), 0.0);
+        assert!(atan2_fast(f32::NAN, 1.0).is_nan());
+    }
+}

@@ -258,12 +258,9 @@ fn walk_from<'a, V: Visitor>(
             beta: p.beta,
             survival: p.survival,
         };
-        visitor.reached(&v, &p.from);
-        if depth == start.max_vertex_depth {
-            return;
-        }
-
-        // ---- The next direction ----
+        // ---- The next direction, prepared before the visitor's work at the vertex ----
+        // (the guide's region is looked up and its row sums fetched while the visitor
+        // connects to the camera; the visitor does not read the prepared state)
         let at = ScatterPoint {
             p: v.hit.p,
             bsdf: &v.bsdf,
@@ -271,7 +268,14 @@ fn walk_from<'a, V: Visitor>(
             mode: start.mode,
             throughput: p.beta,
         };
-        sampler.prepare(&at, state);
+        let last = depth == start.max_vertex_depth;
+        if !last {
+            sampler.prepare(&at, state);
+        }
+        visitor.reached(&v, &p.from);
+        if last {
+            return;
+        }
         // What continuing from here is expected to gather, where the guide cache knows:
         // `lum(β · albedo · E) / π` for the region's particle density `E`.
         let expected = match state.region_density() {

@@ -93,6 +93,45 @@ enum Node {
 
 const NONE: u32 = u32::MAX;
 
+/// A [`Node`] as lookups read it: eight bytes, so that the upper levels of the tree stay in
+/// the first-level cache (a descent is a chain of dependent loads, one per level; the
+/// enum's 28 bytes made it a chain of cache misses). `link`'s top two bits are the split
+/// axis (3: a leaf), the rest the right child's index or the leaf's index in
+/// [`GuideCache::leaves`]; the left child follows its parent.
+#[derive(Clone, Copy, Debug)]
+struct PackedNode {
+    split: f32,
+    link: u32,
+}
+
+const LEAF: u32 = 3;
+const INDEX_BITS: u32 = 30;
+
+impl PackedNode {
+    /// The packed tree of `nodes` (depth-first, as [`split`] appends them) and its leaves.
+    fn pack(nodes: &[Node]) -> (Vec<PackedNode>, Vec<[u32; 6]>) {
+        assert!(nodes.len() < 1 << INDEX_BITS, "guide cache tree too large");
+        let mut leaves = Vec::new();
+        let packed = nodes
+            .iter()
+            .map(|n| match *n {
+                Node::Inner { axis, split, right } => PackedNode {
+                    split,
+                    link: (axis as u32) << INDEX_BITS | right,
+                },
+                Node::Leaf { regions } => {
+                    leaves.push(regions);
+                    PackedNode {
+                        split: 0.0,
+                        link: LEAF << INDEX_BITS | (leaves.len() - 1) as u32,
+                    }
+                }
+            })
+            .collect();
+        (packed, leaves)
+    }
+}
+
 /// What the cache cost and holds (printed by `render` and `maps`).
 #[derive(Clone, Debug, Default)]
 pub struct CacheStats {
@@ -123,7 +162,8 @@ impl CacheStats {
 
 /// The regions and the tree that finds them.
 pub struct GuideCache {
-    nodes: Vec<Node>,
+    nodes: Vec<PackedNode>,
+    leaves: Vec<[u32; 6]>,
     regions: Vec<Region>,
     pub stats: CacheStats,
 }
@@ -171,7 +211,9 @@ impl GuideCache {
             .iter()
             .filter(|r| r.distribution.is_some())
             .collect();
-        let heap_bytes = nodes.capacity() * std::mem::size_of::<Node>()
+        let (nodes, leaves) = PackedNode::pack(&nodes);
+        let heap_bytes = nodes.capacity() * std::mem::size_of::<PackedNode>()
+            + leaves.capacity() * std::mem::size_of::<[u32; 6]>()
             + regions.capacity() * std::mem::size_of::<Region>()
             + guiding
                 .iter()
@@ -196,6 +238,7 @@ impl GuideCache {
         };
         GuideCache {
             nodes,
+            leaves,
             regions,
             stats,
         }
@@ -213,19 +256,17 @@ impl GuideCache {
     pub fn lookup_index(&self, x: Vec3, n: Vec3) -> Option<u32> {
         let mut i = 0usize;
         loop {
-            match *self.nodes.get(i)? {
-                Node::Inner { axis, split, right } => {
-                    i = if x[axis as usize] < split {
-                        i + 1
-                    } else {
-                        right as usize
-                    };
-                }
-                Node::Leaf { regions } => {
-                    let r = regions[normal_bucket(n)];
-                    return (r != NONE).then_some(r);
-                }
+            let node = *self.nodes.get(i)?;
+            let (axis, index) = (node.link >> INDEX_BITS, node.link & ((1 << INDEX_BITS) - 1));
+            if axis == LEAF {
+                let r = self.leaves[index as usize][normal_bucket(n)];
+                return (r != NONE).then_some(r);
             }
+            i = if x[axis as usize] < node.split {
+                i + 1
+            } else {
+                index as usize
+            };
         }
     }
 

@@ -180,6 +180,15 @@ impl FootprintDistribution {
     /// with side normal `frame.z` (eq. 5-11). Particles with zero weight or grazing
     /// `|Ψ_p·N|` must already be left out.
     pub fn build(frame: &Frame, particles: &[GuideParticle], params: &GuideParams) -> Self {
+        Self::from_caps(Self::caps(frame, particles, params))
+    }
+
+    /// The caps of `particles` with their per-channel weights (eq. 5-11), in particle order.
+    pub fn caps(
+        frame: &Frame,
+        particles: &[GuideParticle],
+        params: &GuideParams,
+    ) -> Vec<(Cap, Rgb)> {
         let side = params.k_g_side;
         let omega = cell_solid_angles_cached(side);
         let local: Vec<Vec3> = particles.iter().map(|p| frame.to_local(p.dir)).collect();
@@ -231,6 +240,12 @@ impl FootprintDistribution {
                 p.weight,
             ));
         }
+        caps
+    }
+
+    /// The mixture of `caps` (weighted per channel): the hierarchy over them and the
+    /// per-channel selection probabilities (eq. 15).
+    fn from_caps(mut caps: Vec<(Cap, Rgb)>) -> Self {
         let mut out = FootprintDistribution::default();
         if caps.is_empty() {
             return out;
@@ -276,30 +291,15 @@ impl FootprintDistribution {
     /// Sampling and its pdf then cost a cell search and a lookup instead of a walk over the
     /// caps; the density is the footprints' smoothed over cells of `2π / side²` steradians.
     pub fn rasterise(&self, frame: &Frame, side: usize) -> GridDistribution {
-        let cell = 2.0 * PI / (side * side) as f32;
         let totals = [self.totals.x, self.totals.y, self.totals.z];
-        let mut points: Vec<(Vec3, [f32; 3])> = Vec::with_capacity(self.caps.len() * 4);
-        for (i, cap) in self.caps.iter().enumerate() {
-            let mass = [0, 1, 2].map(|ch| self.prob(ch, i) * totals[ch]);
-            let (t1, t2) = cap.dir.any_orthonormal_pair();
-            let omc = cap.one_minus_cos;
-            let sin_a = safe_sqrt(omc * (2.0 - omc));
-            let cell_of = |w: Vec3| GridDistribution::cell_in(side, frame.to_local(w));
-            let home = cell_of(cap.dir);
-            let inside = [t1, -t1, t2, -t2].iter().all(|t| {
-                let rim = (cap.dir * (1.0 - omc) + *t * sin_a).normalize();
-                cell_of(rim) == home
-            });
-            if inside {
-                points.push((cap.dir, mass));
-                continue;
-            }
-            let omega = 2.0 * PI * omc;
-            let n = ((2.0 * omega / cell).ceil() as usize).clamp(16, 512);
-            let m = mass.map(|x| x / n as f32);
-            points.extend(cap.quadrature(n).map(|w| (w, m)));
-        }
-        GridDistribution::from_masses(frame, side, points)
+        rasterise_caps(
+            frame,
+            side,
+            self.caps.iter().enumerate().map(|(i, cap)| {
+                let mass = [0, 1, 2].map(|ch| self.prob(ch, i) * totals[ch]);
+                (*cap, mass)
+            }),
+        )
     }
 
     /// Probability with which `sample` chooses cap `i` under the channel mixture `mix`.
@@ -442,6 +442,37 @@ impl GuideDistribution for FootprintDistribution {
     }
 }
 
+/// [`FootprintDistribution::rasterise`] of caps given with their per-channel masses (what
+/// a guide cache's region needs: no hierarchy, no selection tables).
+pub fn rasterise_caps(
+    frame: &Frame,
+    side: usize,
+    caps: impl ExactSizeIterator<Item = (Cap, [f32; 3])>,
+) -> GridDistribution {
+    let cell = 2.0 * PI / (side * side) as f32;
+    let mut points: Vec<(Vec3, [f32; 3])> = Vec::with_capacity(caps.len() * 4);
+    for (cap, mass) in caps {
+        let (t1, t2) = cap.dir.any_orthonormal_pair();
+        let omc = cap.one_minus_cos;
+        let sin_a = safe_sqrt(omc * (2.0 - omc));
+        let cell_of = |w: Vec3| GridDistribution::cell_in(side, frame.to_local(w));
+        let home = cell_of(cap.dir);
+        let inside = [t1, -t1, t2, -t2].iter().all(|t| {
+            let rim = (cap.dir * (1.0 - omc) + *t * sin_a).normalize();
+            cell_of(rim) == home
+        });
+        if inside {
+            points.push((cap.dir, mass));
+            continue;
+        }
+        let omega = 2.0 * PI * omc;
+        let n = ((2.0 * omega / cell).ceil() as usize).clamp(16, 512);
+        let m = mass.map(|x| x / n as f32);
+        points.extend(cap.quadrature(n).map(|w| (w, m)));
+    }
+    GridDistribution::from_masses(frame, side, points)
+}
+
 /// The paper's footprints as a [`Guide`].
 pub struct FootprintGuide;
 
@@ -460,13 +491,16 @@ impl Guide for FootprintGuide {
         particles: &[GuideParticle],
         params: &GuideParams,
     ) -> Option<Box<dyn GuideDistribution>> {
-        let d = FootprintDistribution::build(frame, particles, params);
-        if d.caps.is_empty() {
-            None
-        } else if params.raster > 0 {
-            Some(Box::new(d.rasterise(frame, params.raster)))
-        } else {
-            Some(Box::new(d))
+        if params.raster > 0 {
+            // Straight from the caps: the hierarchy and selection tables would go unused.
+            let caps = FootprintDistribution::caps(frame, particles, params);
+            if caps.is_empty() {
+                return None;
+            }
+            let masses = caps.iter().map(|(c, w)| (*c, [w.x, w.y, w.z]));
+            return Some(Box::new(rasterise_caps(frame, params.raster, masses)));
         }
+        let d = FootprintDistribution::build(frame, particles, params);
+        (!d.caps.is_empty()).then(|| Box::new(d) as Box<dyn GuideDistribution>)
     }
 }

@@ -257,6 +257,9 @@ impl<'a> GuidedSampler<'a> {
                 {
                     state.mix = ChannelMix::new(at.channel_factor(), dist.get().channel_totals());
                     if state.mix.is_some() {
+                        if let RegionDistribution::Raster(g) = dist {
+                            g.prefetch();
+                        }
                         state.prepared = Prepared::Region(dist);
                         state.region = Some(i);
                         state.density = cache.regions()[i as usize].density;
