@@ -294,7 +294,7 @@ impl Default for GuideParams {
             grid_side: 8,
             cache: true,
             region_particles: 400,
-            region_seeds: 1024,
+            region_seeds: 4096,
             min_depth: 2,
             guided_mis: true,
             mis_table: 16,

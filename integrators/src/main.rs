@@ -93,7 +93,7 @@ struct GuideParamArgs {
     #[arg(long)]
     region_particles: Option<usize>,
     /// Most scattering points of the other pass per cached region [default:
-    /// guide.region_seeds, else 1024]
+    /// guide.region_seeds, else 4096]
     #[arg(long)]
     region_seeds: Option<usize>,
     /// Leave particles that arrived in fewer segments out of the guiding maps (2: no direct

@@ -26,8 +26,8 @@ use glam::{Vec2, Vec3};
 /// channel's cell probabilities are quantised to integers that sum to exactly
 /// [`QUANTUM`] (largest remainders), stored per cell with the three channels side by
 /// side, so that `pdf` reads one cell's six bytes. Sampling searches the cumulative sums
-/// of the channel's *rows* (the `side` cells of one `φ` band of a hemisphere: 2·side
-/// numbers, 64 bytes at side 16) and then walks the row's cells. Both read the
+/// of the channel's *rows* (the `side` cells of one `φ` band of a hemisphere: one number
+/// per held row, 32 bytes at side 16 for one hemisphere) and then walks the row's cells. Both read the
 /// same integers, so sample and pdf agree exactly.
 #[derive(Clone, Debug)]
 pub struct GridDistribution {
@@ -35,8 +35,13 @@ pub struct GridDistribution {
     side: usize,
     /// Per cell (hemisphere `+z` first), each channel's probability in units of
     /// `1 / QUANTUM`; all zero for a channel without mass.
+    /// Only the rows held: the `+z` hemisphere's alone where no channel has mass below the
+    /// horizon (an opaque surface's distributions: half the bytes, so more regions stay in
+    /// cache), cells past the end having probability 0.
     counts: Box<[[u16; 3]]>,
-    /// Per channel, the cumulative counts over the rows (`2·side` each, channel after
+    /// Rows held: `side` (the `+z` hemisphere) or `2·side` (both).
+    rows: usize,
+    /// Per channel, the cumulative counts over the held rows (`rows` each, channel after
     /// channel); the last of a channel with mass is [`QUANTUM`].
     row_cdf: Box<[u16]>,
     totals: Rgb,
@@ -107,26 +112,32 @@ impl GridDistribution {
                 totals[ch] += m[ch] as f64;
             }
         }
-        let mut counts = vec![[0u16; 3]; cells];
-        let mut row_cdf = vec![0u16; 3 * 2 * side];
+        let below = acc[side * side..]
+            .iter()
+            .any(|a| a.iter().any(|&m| m > 0.0));
+        let rows = if below { 2 * side } else { side };
+        let mut counts = vec![[0u16; 3]; rows * side];
+        let mut row_cdf = vec![0u16; 3 * rows];
         for ch in 0..3 {
             if !(totals[ch] > 0.0) {
                 continue;
             }
             let q = quantise(acc.iter().map(|a| a[ch] / totals[ch]));
             let mut run = 0u32;
-            for (r, row) in q.chunks(side).enumerate() {
+            // (Quantising leaves a cell without mass at 0, so the rows not held are all 0.)
+            for (r, row) in q.chunks(side).take(rows).enumerate() {
                 for (i, &c) in row.iter().enumerate() {
                     counts[r * side + i][ch] = c as u16;
                     run += c;
                 }
-                row_cdf[ch * 2 * side + r] = run as u16;
+                row_cdf[ch * rows + r] = run as u16;
             }
         }
         GridDistribution {
             frame: *frame,
             side,
             counts: counts.into_boxed_slice(),
+            rows,
             row_cdf: row_cdf.into_boxed_slice(),
             totals: Rgb::new(totals[0] as f32, totals[1] as f32, totals[2] as f32),
         }
@@ -146,7 +157,9 @@ impl GridDistribution {
     /// Probability of channel `ch` for cell `cell`, as sampling draws it.
     #[inline]
     pub fn prob(&self, ch: usize, cell: usize) -> f32 {
-        self.counts[cell][ch] as f32 / QUANTUM as f32
+        self.counts
+            .get(cell)
+            .map_or(0.0, |c| c[ch] as f32 / QUANTUM as f32)
     }
 
     /// A direction drawn as [`GuideDistribution::sample`] draws it, with the cell `pdf`
@@ -155,14 +168,15 @@ impl GridDistribution {
     fn draw(&self, mix: &ChannelMix, rng: &mut Rng) -> Option<(Vec3, Option<usize>)> {
         let ch = mix.pick(rng.uniform());
         let s = self.side;
-        let rows = &self.row_cdf[ch * 2 * s..(ch + 1) * 2 * s];
-        if rows[2 * s - 1] == 0 {
+        let n = self.rows;
+        let rows = &self.row_cdf[ch * n..(ch + 1) * n];
+        if rows[n - 1] == 0 {
             return None;
         }
         // The quantum below `u`: the row whose cumulative count first exceeds it, then the
         // cell of that row whose running count does.
         let t = ((rng.uniform() * QUANTUM as f32) as u32).min(QUANTUM - 1);
-        let row = rows.partition_point(|&c| c as u32 <= t).min(2 * s - 1);
+        let row = rows.partition_point(|&c| c as u32 <= t).min(n - 1);
         let mut left = t - if row > 0 { rows[row - 1] as u32 } else { 0 };
         let mut cell = row * s + s - 1;
         for (i, c) in self.counts[row * s..(row + 1) * s].iter().enumerate() {
@@ -200,7 +214,9 @@ impl GridDistribution {
     /// The density of every direction in `cell`.
     #[inline]
     fn cell_pdf(&self, mix: &ChannelMix, cell: usize) -> f32 {
-        let c = self.counts[cell];
+        let Some(&c) = self.counts.get(cell) else {
+            return 0.0;
+        };
         let p = mix.0[0] * c[0] as f32 + mix.0[1] * c[1] as f32 + mix.0[2] * c[2] as f32;
         p / (QUANTUM as f32 * self.cell_solid_angle())
     }
