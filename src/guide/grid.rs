@@ -372,6 +372,39 @@ mod tests {
         }
     }
 
+    /// A grid keeps the lower hemisphere's rows only when some mass lies below the horizon:
+    /// without, half the bytes, no draw below and density 0 there; with, draws reach the
+    /// lower cell and its density is the upper one's (equal masses).
+    #[test]
+    fn the_lower_hemisphere_is_held_only_when_it_has_mass() {
+        let frame = Frame::from_z(Vec3::new(-0.4, 0.1, 0.9).normalize());
+        let up = frame.to_world(Vec3::new(0.3, 0.2, 0.93).normalize());
+        let down = frame.to_world(Vec3::new(-0.1, 0.5, -0.86).normalize());
+        let upper = GridDistribution::from_masses(&frame, 16, [(up, [1.0, 1.0, 1.0])]);
+        let both = GridDistribution::from_masses(
+            &frame,
+            16,
+            [(up, [1.0, 1.0, 1.0]), (down, [1.0, 1.0, 1.0])],
+        );
+        assert_eq!(2 * upper.heap_bytes(), both.heap_bytes());
+        let white = ChannelMix([0.2, 0.7, 0.1]);
+        assert_eq!(upper.pdf(&white, down), 0.0);
+        assert!(upper.pdf(&white, up) > 0.0);
+        let (p_up, p_down) = (both.pdf(&white, up), both.pdf(&white, down));
+        assert!(p_down > 0.0 && (p_up - p_down).abs() < 1e-6 * p_up);
+        let mut rng = Rng::new(5, 2, 0);
+        let mut below = 0;
+        for _ in 0..2000 {
+            let w = upper.sample(&white, &mut rng).expect("mass above");
+            assert!(frame.to_local(w).z >= 0.0);
+            let w = both.sample(&white, &mut rng).expect("mass on both sides");
+            below += usize::from(frame.to_local(w).z < 0.0);
+        }
+        // Half the draws below: 1000 of 2000 with standard deviation 22 (binomial); the
+        // bound is 6 of them.
+        assert!((below as i64 - 1000).abs() < 135, "{below} of 2000 below");
+    }
+
     #[test]
     fn draws_land_in_cells_of_the_drawn_channel_and_pdf_reads_their_count() {
         let frame = Frame::from_z(Vec3::new(0.3, -0.2, 0.9).normalize());
