@@ -909,30 +909,3 @@ fn sparse_photon_maps_grow_within_a_budget() {
         desk.maps.photons
     );
 }
-
-/// A pass whose map the method does not read only seeds the other map's cache and shoots
-/// `SEED_PASS_SHARE` of its paths: path tracing's view pass and light tracing's light pass;
-/// the combined image reads both maps and shoots both in full. (The counts are exact: the
-/// pass traces the paths it is given.)
-#[test]
-fn a_pass_that_only_seeds_a_cache_shoots_a_quarter_of_its_paths() {
-    use footprint_integrators::maps::{SEED_PASS_SHARE, run_passes};
-    let mut scene = load_scene(&scene_path("cornell")).unwrap();
-    scene.maps.photons = 8_000;
-    scene.maps.importons = 12_000;
-    scene.maps.rounds = 1;
-    let params = footprint::settings::GuideParams::default();
-    let paths = |name: &str| {
-        let method = footprint_integrators::Method::parse(name).unwrap();
-        let p = run_passes(&scene, &method, &params, &pass_settings(0, 3));
-        (
-            p.light.map(|l| l.stats.paths),
-            p.view.map(|v| v.stats.paths),
-        )
-    };
-    let quarter = |n: usize| Some((n as f64 * SEED_PASS_SHARE) as usize);
-    assert_eq!(paths("pt-footprint"), (Some(8_000), quarter(12_000)));
-    assert_eq!(paths("lt-footprint"), (quarter(8_000), Some(12_000)));
-    assert_eq!(paths("combined-footprint"), (Some(8_000), Some(12_000)));
-    assert_eq!(paths("pt-bsdf"), (None, None));
-}

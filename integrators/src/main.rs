@@ -450,14 +450,11 @@ impl ImportArgs {
 /// Particle-map flags, shared by the commands that build maps.
 #[derive(clap::Args, Debug, Clone)]
 struct MapArgs {
-    /// Photon paths shot by the light pass (with --time, more when the map grows: --map-grow;
-    /// a quarter when the method reads no photon map and the pass only seeds the importance
-    /// map's cache, as for lt) [default: the scene's maps.photons, else 200000]
+    /// Photon paths shot by the light pass (with --time, more when the map grows: --map-grow)
+    /// [default: the scene's maps.photons, else 200000]
     #[arg(long)]
     photons: Option<usize>,
-    /// Importon paths shot by the view pass (a quarter when the method reads no importance
-    /// map and the pass only seeds the photon map's cache, as for pt) [default: the scene's
-    /// maps.importons, else 200000]
+    /// Importon paths shot by the view pass [default: the scene's maps.importons, else 200000]
     #[arg(long)]
     importons: Option<usize>,
     /// Maximum distance of a particle from a query point [default: the scene's maps.max_dist,

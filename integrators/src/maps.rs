@@ -122,13 +122,6 @@ pub fn needed_passes(method: &Method, params: &GuideParams) -> (bool, bool) {
     )
 }
 
-/// The share of its paths a pass shoots when no map of it is read, only its scattering
-/// points, as the other map's cache seeds (light tracing's light pass, path tracing's view
-/// pass): regions need points where the paths go, not a map's density. Measured (16 s desk
-/// `lt-footprint`, 30 s Veach `pt-footprint`, README "What moved the error"): a quarter
-/// of 200,000 paths places the regions as well and leaves the time to rendering.
-pub const SEED_PASS_SHARE: f64 = 0.25;
-
 /// Runs the passes `method` needs (with `scene.maps`' path counts), in `scene.maps.rounds`
 /// rounds that refine each other (see `MapSettings::rounds`; docs/method.md, "Maps that
 /// refine each other").
@@ -177,21 +170,9 @@ pub fn run_passes(
             ),
             None => (GuidedSampler::bsdf(), GuidedSampler::bsdf()),
         };
-        // In the last round a pass whose map no one reads only seeds the other cache.
-        let seeds_only = |map_read: bool| {
-            if last && !map_read {
-                SEED_PASS_SHARE
-            } else {
-                1.0
-            }
-        };
-        let (photons_read, importons_read) = (
-            method.integrator.paths().camera,
-            method.integrator.paths().light,
-        );
         let light = (need_light || !last).then(|| {
             let s = PassSettings {
-                paths: count((scene.maps.photons as f64 * seeds_only(photons_read)) as usize),
+                paths: count(scene.maps.photons),
                 seed,
                 ..pass.clone()
             };
@@ -199,7 +180,7 @@ pub fn run_passes(
         });
         let view = (need_view || !last).then(|| {
             let s = PassSettings {
-                paths: count((scene.maps.importons as f64 * seeds_only(importons_read)) as usize),
+                paths: count(scene.maps.importons),
                 seed,
                 ..pass.clone()
             };
