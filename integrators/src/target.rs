@@ -57,11 +57,9 @@ impl ImportanceTarget {
             let m = sum[i][c] / n;
             ((sum2[i][c] - n * m * m) / (n - 1.0).max(1.0)).max(0.0) / n
         };
+        let lum = crate::window::LUMINANCE;
         let m_all: f64 = (0..npix)
-            .map(|i| {
-                let c = [mean(i, 0), mean(i, 1), mean(i, 2)];
-                0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
-            })
+            .map(|i| (0..3).map(|c| lum[c] * mean(i, c)).sum::<f64>())
             .sum::<f64>()
             / npix.max(1) as f64;
         if !(m_all > 0.0) || !m_all.is_finite() {

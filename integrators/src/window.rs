@@ -11,7 +11,8 @@ pub const RADII: [usize; 6] = [1, 2, 4, 8, 16, 32];
 /// that mean (or of `floor`).
 pub const RELATIVE_ERROR: f64 = 0.2;
 
-const LUMINANCE: [f64; 3] = [0.2126, 0.7152, 0.0722];
+/// Rec. 709 luminance weights (`footprint::math::luminance`'s), in double precision.
+pub const LUMINANCE: [f64; 3] = [0.2126, 0.7152, 0.0722];
 
 /// Per pixel of a `width`-wide image, the mean colour over the smallest window of
 /// [`RADII`] whose luminance mean has a standard error of at most [`RELATIVE_ERROR`] of

@@ -85,19 +85,14 @@ impl RegionDistribution {
     }
 }
 
-#[derive(Clone, Copy, Debug)]
-enum Node {
-    Inner { axis: u8, split: f32, right: u32 },
-    Leaf { regions: [u32; 6] },
-}
-
 const NONE: u32 = u32::MAX;
 
-/// A [`Node`] as lookups read it: eight bytes, so that the upper levels of the tree stay in
-/// the first-level cache (a descent is a chain of dependent loads, one per level; the
-/// enum's 28 bytes made it a chain of cache misses). `link`'s top two bits are the split
-/// axis (3: a leaf), the rest the right child's index or the leaf's index in
-/// [`GuideCache::leaves`]; the left child follows its parent.
+/// A node of the tree that finds a point's region: eight bytes, so that the upper levels
+/// stay in the first-level cache (a descent is a chain of dependent loads, one per level; a
+/// 28-byte node holding the leaf's regions made it a chain of cache misses). `link`'s top
+/// two bits are the split axis (3: a leaf), the rest the right child's index or the leaf's
+/// index in [`GuideCache::leaves`] (its region per normal bucket); the left child follows
+/// its parent.
 #[derive(Clone, Copy, Debug)]
 struct PackedNode {
     split: f32,
@@ -108,27 +103,20 @@ const LEAF: u32 = 3;
 const INDEX_BITS: u32 = 30;
 
 impl PackedNode {
-    /// The packed tree of `nodes` (depth-first, as [`split`] appends them) and its leaves.
-    fn pack(nodes: &[Node]) -> (Vec<PackedNode>, Vec<[u32; 6]>) {
-        assert!(nodes.len() < 1 << INDEX_BITS, "guide cache tree too large");
-        let mut leaves = Vec::new();
-        let packed = nodes
-            .iter()
-            .map(|n| match *n {
-                Node::Inner { axis, split, right } => PackedNode {
-                    split,
-                    link: (axis as u32) << INDEX_BITS | right,
-                },
-                Node::Leaf { regions } => {
-                    leaves.push(regions);
-                    PackedNode {
-                        split: 0.0,
-                        link: LEAF << INDEX_BITS | (leaves.len() - 1) as u32,
-                    }
-                }
-            })
-            .collect();
-        (packed, leaves)
+    fn inner(axis: usize, split: f32, right: usize) -> Self {
+        assert!(right < 1 << INDEX_BITS, "guide cache tree too large");
+        PackedNode {
+            split,
+            link: (axis as u32) << INDEX_BITS | right as u32,
+        }
+    }
+
+    fn leaf(index: usize) -> Self {
+        assert!(index < 1 << INDEX_BITS, "guide cache tree too large");
+        PackedNode {
+            split: 0.0,
+            link: LEAF << INDEX_BITS | index as u32,
+        }
     }
 }
 
@@ -192,7 +180,7 @@ impl GuideCache {
             .copied()
             .collect();
         let n_seeds = seeds.len();
-        let mut nodes = Vec::new();
+        let (mut nodes, mut leaves) = (Vec::new(), Vec::new());
         let mut jobs = Vec::new();
         if !seeds.is_empty() {
             split(
@@ -200,6 +188,7 @@ impl GuideCache {
                 params.region_seeds,
                 max_dist,
                 &mut nodes,
+                &mut leaves,
                 &mut jobs,
             );
         }
@@ -211,7 +200,6 @@ impl GuideCache {
             .iter()
             .filter(|r| r.distribution.is_some())
             .collect();
-        let (nodes, leaves) = PackedNode::pack(&nodes);
         let heap_bytes = nodes.capacity() * std::mem::size_of::<PackedNode>()
             + leaves.capacity() * std::mem::size_of::<[u32; 6]>()
             + regions.capacity() * std::mem::size_of::<Region>()
@@ -281,7 +269,8 @@ fn split(
     seeds: &mut [Seed],
     max_seeds: usize,
     max_extent: f32,
-    nodes: &mut Vec<Node>,
+    nodes: &mut Vec<PackedNode>,
+    leaves: &mut Vec<[u32; 6]>,
     jobs: &mut Vec<Job>,
 ) {
     let (lo, hi) = seeds.iter().fold(
@@ -298,30 +287,21 @@ fn split(
     };
     let small = seeds.len() <= max_seeds && ext[axis] <= max_extent;
     if small || seeds.len() < 2 || !(ext[axis] > 0.0) {
-        nodes.push(Node::Leaf {
-            regions: leaf_jobs(seeds, jobs),
-        });
+        nodes.push(PackedNode::leaf(leaves.len()));
+        leaves.push(leaf_jobs(seeds, jobs));
         return;
     }
     let me = nodes.len();
-    nodes.push(Node::Inner {
-        axis: axis as u8,
-        split: 0.0,
-        right: 0,
-    });
+    nodes.push(PackedNode::inner(axis, 0.0, 0));
     let mid = seeds.len() / 2;
     seeds.select_nth_unstable_by(mid, |a, b| a.position[axis].total_cmp(&b.position[axis]));
     let split_at = seeds[mid].position[axis];
     // Lookups send points below the split value left; the median seed starts the right half.
     let (left, right) = seeds.split_at_mut(mid);
-    split(left, max_seeds, max_extent, nodes, jobs);
-    let r = nodes.len() as u32;
-    split(right, max_seeds, max_extent, nodes, jobs);
-    nodes[me] = Node::Inner {
-        axis: axis as u8,
-        split: split_at,
-        right: r,
-    };
+    split(left, max_seeds, max_extent, nodes, leaves, jobs);
+    let r = nodes.len();
+    split(right, max_seeds, max_extent, nodes, leaves, jobs);
+    nodes[me] = PackedNode::inner(axis, split_at, r);
 }
 
 /// One job per normal bucket present in a leaf: the seed nearest the bucket's mean position
