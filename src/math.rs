@@ -118,9 +118,11 @@ pub fn atan2_fast(y: f32, x: f32) -> f32 {
     }
     let a = lo / hi;
     let t = a * a;
+    // Horner with a multiply and an add: `f32::mul_add` is a call to `fmaf` where the
+    // build does not assume FMA (x86-64-v2).
     let mut p = C[7];
     for &c in C[..7].iter().rev() {
-        p = p.mul_add(t, c);
+        p = p * t + c;
     }
     let mut r = a * p;
     if ay > ax {
@@ -132,9 +134,65 @@ pub fn atan2_fast(y: f32, x: f32) -> f32 {
     if y.is_sign_negative() { -r } else { r }
 }
 
+/// `(sin x, cos x)` for `|x| <= π/4`, inlined: the Taylor polynomials of degree 9 (sine)
+/// and 10 (cosine), whose truncation errors there (2e-9, 1e-10) are below the rounding of
+/// `f32`. The concentric disk mapping needs exactly this range, at every diffuse bounce;
+/// libm's `sincosf` is an out-of-line call with its own range reduction.
+#[inline(always)]
+pub fn sin_cos_quarter(x: f32) -> (f32, f32) {
+    let x2 = x * x;
+    let sin =
+        x + x * x2 * (-1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 * (-1.0 / 5040.0 + x2 / 362_880.0)));
+    let cos = 1.0
+        + x2 * (-0.5
+            + x2 * (1.0 / 24.0 + x2 * (-1.0 / 720.0 + x2 * (1.0 / 40_320.0 - x2 / 3_628_800.0))));
+    (sin, cos)
+}
+
+/// `(sin 2πu, cos 2πu)` for `u` in `[0, 1]` (an azimuth drawn as a fraction of a turn): the
+/// turn is split into quarters exactly (`u - q/4` rounds nothing), the remainder of at most an
+/// eighth of a turn goes through [`sin_cos_quarter`], and the quarter rotates the pair.
+#[inline(always)]
+pub fn sin_cos_turns(u: f32) -> (f32, f32) {
+    let q = (4.0 * u).round();
+    let x = (u - 0.25 * q) * std::f32::consts::TAU;
+    let (s, c) = sin_cos_quarter(x);
+    match (q as i32) & 3 {
+        0 => (s, c),
+        1 => (c, -s),
+        2 => (-s, -c),
+        _ => (-c, s),
+    }
+}
+
 #[cfg(test)]
 mod atan2_tests {
-    use super::atan2_fast;
+    use super::{atan2_fast, sin_cos_quarter, sin_cos_turns};
+
+    /// Against double precision over the whole range of each: the bound is a few ulp of 1
+    /// (the polynomials' truncation is below 2e-9; what remains is the rounding of `x` and
+    /// of the sums).
+    #[test]
+    fn sin_cos_match_libm() {
+        let mut worst = 0.0f64;
+        for k in 0..=100_000 {
+            let x = (k as f32 / 100_000.0 - 0.5) * std::f32::consts::FRAC_PI_2;
+            let (s, c) = sin_cos_quarter(x);
+            let (ws, wc) = (x as f64).sin_cos();
+            worst = worst.max((s as f64 - ws).abs()).max((c as f64 - wc).abs());
+        }
+        assert!(worst < 3e-7, "quarter: largest error {worst}");
+        let mut worst = 0.0f64;
+        for k in 0..=100_000 {
+            let u = k as f32 / 100_000.0;
+            let (s, c) = sin_cos_turns(u);
+            let (ws, wc) = (u as f64 * std::f64::consts::TAU).sin_cos();
+            worst = worst.max((s as f64 - ws).abs()).max((c as f64 - wc).abs());
+        }
+        assert!(worst < 5e-7, "turns: largest error {worst}");
+        assert_eq!(sin_cos_turns(0.0), (0.0, 1.0));
+        assert_eq!(sin_cos_turns(0.25).0, 1.0);
+    }
 
     /// Against the double-precision arctangent on a dense circle, the axes and the
     /// diagonals: the bound is the polynomial's fitted error (1.4e-7) plus the rounding of

@@ -2,7 +2,7 @@
 //! `sample_*` maps uniform numbers to the domain, `*_pdf` gives the density of that mapping
 //! in the measure named by the function (per steradian for directions).
 
-use crate::math::{INV_4PI, INV_PI, PI, safe_sqrt};
+use crate::math::{INV_4PI, INV_PI, PI, safe_sqrt, sin_cos_quarter, sin_cos_turns};
 use glam::{Vec2, Vec3};
 
 /// Concentric mapping of the unit square to the unit disc (Shirley & Chiu 1997).
@@ -12,12 +12,15 @@ pub fn sample_concentric_disk(u: Vec2) -> Vec2 {
     if o.x == 0.0 && o.y == 0.0 {
         return Vec2::ZERO;
     }
-    let (r, theta) = if o.x.abs() > o.y.abs() {
-        (o.x, (PI / 4.0) * (o.y / o.x))
+    // θ = (π/4)(y/x), or π/2 - (π/4)(x/y) whose cosine and sine are the sine and cosine of
+    // (π/4)(x/y): either way one angle of at most π/4.
+    if o.x.abs() > o.y.abs() {
+        let (sin, cos) = sin_cos_quarter((PI / 4.0) * (o.y / o.x));
+        o.x * Vec2::new(cos, sin)
     } else {
-        (o.y, PI / 2.0 - (PI / 4.0) * (o.x / o.y))
-    };
-    r * Vec2::new(theta.cos(), theta.sin())
+        let (sin, cos) = sin_cos_quarter((PI / 4.0) * (o.x / o.y));
+        o.y * Vec2::new(sin, cos)
+    }
 }
 
 /// Cosine-weighted direction on the hemisphere around +z.
@@ -39,8 +42,8 @@ pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
 pub fn sample_uniform_sphere(u: Vec2) -> Vec3 {
     let z = 1.0 - 2.0 * u.x;
     let r = safe_sqrt(1.0 - z * z);
-    let phi = 2.0 * PI * u.y;
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    let (sin_phi, cos_phi) = sin_cos_turns(u.y);
+    Vec3::new(r * cos_phi, r * sin_phi, z)
 }
 
 /// Density per steradian of [`sample_uniform_sphere`].
@@ -54,8 +57,8 @@ pub fn uniform_sphere_pdf() -> f32 {
 pub fn sample_uniform_cone(u: Vec2, cos_max: f32) -> Vec3 {
     let cos_t = 1.0 - u.x * (1.0 - cos_max);
     let sin_t = safe_sqrt(1.0 - cos_t * cos_t);
-    let phi = 2.0 * PI * u.y;
-    Vec3::new(sin_t * phi.cos(), sin_t * phi.sin(), cos_t)
+    let (sin_phi, cos_phi) = sin_cos_turns(u.y);
+    Vec3::new(sin_t * cos_phi, sin_t * sin_phi, cos_t)
 }
 
 /// Density per steradian of [`sample_uniform_cone`].

@@ -10,6 +10,7 @@ use footprint::guide::sampler::{GuidedSampler, SamplerState, ScatterPoint};
 use footprint::math::PI;
 use footprint::rng::Rng;
 use footprint::scene::Scene;
+use footprint::scene::features::Features;
 use footprint::scene::geometry::offset_ray_origin;
 use footprint::scene::light::{Light, LightEmission};
 use glam::Vec3;
@@ -38,8 +39,10 @@ pub fn sample_light<'s>(scene: &'s Scene, rng: &mut Rng) -> Option<LightStart<'s
 
 /// The first ray of a light path: origin (off the light's surface), direction and
 /// throughput `Le cos / (pdf_pos pdf_dir pmf)`; the direction guided by `sampler` at area
-/// lights. `None` when no direction could be drawn or the throughput is zero.
-pub fn first_ray<'a>(
+/// lights, sampled in the loop compiled for the effects `F` (the emitted lobe is Lambertian:
+/// where `F` has the Lambertian fast path, it samples the lobe as the surfaces' vertices do).
+/// `None` when no direction could be drawn or the throughput is zero.
+pub fn first_ray<'a, F: Features>(
     start: &LightStart,
     sampler: &GuidedSampler<'a>,
     state: &mut SamplerState<'a>,
@@ -58,7 +61,7 @@ pub fn first_ray<'a>(
                 throughput: em.le,
             };
             sampler.prepare(&at, state);
-            let s = sampler.sample(&at, state, rng)?;
+            let s = sampler.sample_with::<F>(&at, state, rng)?;
             // Le cos / (pdf_pos pdf_w pmf) = Le π (f cos / pdf_w) / (pdf_pos pmf) with f = 1/π.
             (s.wi, em.le * s.weight * (PI / (em.pdf_pos * start.pmf)))
         }

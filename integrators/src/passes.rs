@@ -247,12 +247,15 @@ fn light_paths(
 ) -> PassOutput {
     let start = Instant::now();
     let inv_n = 1.0 / s.paths.max(1) as f32;
+    let which = s.specialisation(scene);
     let all = run_chunks(paths.clone(), |i, out, state| {
         let mut rng = Rng::new(s.seed, DOMAIN_LIGHT_PASS, i as u64);
         let Some(start) = sample_light(scene, &mut rng) else {
             return;
         };
-        let Some((origin, dir, beta)) = first_ray(&start, sampler, state, &mut rng) else {
+        let first =
+            crate::specialised!(which, F => first_ray::<F>(&start, sampler, state, &mut rng));
+        let Some((origin, dir, beta)) = first else {
             return;
         };
         if let Some(n) = start.em.n {

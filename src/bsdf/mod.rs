@@ -432,8 +432,8 @@ fn blinn_sample(n: f32, wo: Vec3, u: Vec2) -> Option<Vec3> {
     let one_minus_cos = -(u.x.max(f32::MIN_POSITIVE).ln() / (n + 1.0)).exp_m1();
     let cos_h = 1.0 - one_minus_cos;
     let sin_h = safe_sqrt(one_minus_cos * (2.0 - one_minus_cos));
-    let phi = 2.0 * PI * u.y;
-    let h = Vec3::new(sin_h * phi.cos(), sin_h * phi.sin(), cos_h);
+    let (sin_phi, cos_phi) = crate::math::sin_cos_turns(u.y);
+    let h = Vec3::new(sin_h * cos_phi, sin_h * sin_phi, cos_h);
     let wi = 2.0 * wo.dot(h) * h - wo;
     if wi.z <= 0.0 || wo.dot(h) <= 0.0 {
         return None;
@@ -487,6 +487,31 @@ impl Bsdf {
             return 0.0;
         }
         num / den
+    }
+
+    /// [`Bsdf::adjoint_correction`] compiled for the effects `F`. Without shading normals the
+    /// frame's normal is the geometric one (bit for bit: `surface_hit_with` and the emission
+    /// lobe pass `ng` as `ns`), so the general form's numerator and denominator are the same
+    /// product `|wo·n_g| |wi·n_g|`, and its quotient is exactly 1 wherever it divides: the
+    /// same value, without two of the four dot products and the division.
+    #[inline]
+    fn adjoint_correction_with<F: Features>(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
+        if F::SHADING_NORMALS {
+            return self.adjoint_correction(wo, wi, mode);
+        }
+        if mode == TransportMode::Radiance {
+            return 1.0;
+        }
+        debug_assert!(
+            self.frame.z.to_array().map(f32::to_bits) == self.ng.to_array().map(f32::to_bits),
+            "a shading normal in a loop compiled without them"
+        );
+        let den = wo.dot(self.ng).abs() * wi.dot(self.ng).abs();
+        if den > 0.0 && den.is_finite() {
+            1.0
+        } else {
+            0.0
+        }
     }
 
     /// The side the reflecting kinds work on for `wo`: -1 when a two-sided surface is seen
@@ -553,7 +578,7 @@ impl Bsdf {
         if F::LAMBERTIAN {
             if let Lobes::Diffuse { kd } = self.lobes {
                 return match self.lambert_cosines(wo, wi) {
-                    Some(_) => kd * INV_PI * self.adjoint_correction(wo, wi, mode),
+                    Some(_) => kd * INV_PI * self.adjoint_correction_with::<F>(wo, wi, mode),
                     None => Rgb::ZERO,
                 };
             }
@@ -565,7 +590,33 @@ impl Bsdf {
             Some((lo, li)) => self.lobes.eval_local(lo, li),
             None => return Rgb::ZERO,
         };
-        f * self.adjoint_correction(wo, wi, mode)
+        f * self.adjoint_correction_with::<F>(wo, wi, mode)
+    }
+
+    /// `f(wo, wi)` ([`Bsdf::eval_with`]) and, where it comes at no extra cost, the density
+    /// [`Bsdf::pdf_with`] of `wi`: the Lambertian fast path reads both from one set of
+    /// cosines (the very values the two calls compute); elsewhere the density is left to be
+    /// computed where it is needed (`None`). Always inlined: without the fast path it is
+    /// [`Bsdf::eval_with`] itself.
+    #[inline(always)]
+    pub fn eval_and_lambert_pdf_with<F: Features>(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        mode: TransportMode,
+    ) -> (Rgb, Option<f32>) {
+        if F::LAMBERTIAN {
+            if let Lobes::Diffuse { kd } = self.lobes {
+                return match self.lambert_cosines(wo, wi) {
+                    Some((_, li)) => (
+                        kd * INV_PI * self.adjoint_correction_with::<F>(wo, wi, mode),
+                        Some(cosine_hemisphere_pdf(li)),
+                    ),
+                    None => (Rgb::ZERO, Some(0.0)),
+                };
+            }
+        }
+        (self.eval_with::<F>(wo, wi, mode), None)
     }
 
     /// Density per steradian with which [`Bsdf::sample`] returns `wi` from its non-delta
@@ -657,7 +708,7 @@ impl Bsdf {
                 let wi = self.frame.to_world(Vec3::new(li.x, li.y, li.z * side));
                 let (_, cos_i) = self.lambert_cosines(wo, wi)?;
                 let pdf_w = cosine_hemisphere_pdf(cos_i);
-                let f = kd * INV_PI * self.adjoint_correction(wo, wi, mode);
+                let f = kd * INV_PI * self.adjoint_correction_with::<F>(wo, wi, mode);
                 if pdf_w <= 0.0 || !pdf_w.is_finite() || f.max_element() <= 0.0 {
                     return None;
                 }

@@ -134,8 +134,8 @@ impl Cap {
             let omc = rng.uniform() * self.one_minus_cos;
             let cos_a = 1.0 - omc;
             let sin_a = safe_sqrt(omc * (2.0 - omc));
-            let phi = 2.0 * PI * rng.uniform();
-            let w = (self.dir * cos_a + (t1 * phi.cos() + t2 * phi.sin()) * sin_a).normalize();
+            let (sin_phi, cos_phi) = crate::math::sin_cos_turns(rng.uniform());
+            let w = (self.dir * cos_a + (t1 * cos_phi + t2 * sin_phi) * sin_a).normalize();
             if self.contains(w) {
                 return w;
             }

@@ -198,11 +198,11 @@ impl GridDistribution {
             // cos θ = 1 - (i + u)/s, written so that the horizon ring never rounds to 0.
             let cos_t = ((s - i) as f32 - u.x) / s as f32;
             let sin_t = safe_sqrt(1.0 - cos_t * cos_t);
-            let phi = 2.0 * PI * vv;
+            let (sin_phi, cos_phi) = crate::math::sin_cos_turns(vv);
             let z = if hemi == 0 { cos_t } else { -cos_t };
             w = self
                 .frame
-                .to_world(Vec3::new(sin_t * phi.cos(), sin_t * phi.sin(), z))
+                .to_world(Vec3::new(sin_t * cos_phi, sin_t * sin_phi, z))
                 .normalize();
             if self.cell_of(self.frame.to_local(w)) == cell {
                 return Some((w, Some(cell)));

@@ -416,17 +416,18 @@ impl<'a> GuidedSampler<'a> {
         })
     }
 
+    /// The one-sample mixture's density of `wi` whose BSDF density is `bsdf_pdf`.
     #[inline]
-    fn mixture_pdf<F: Features>(
+    fn mixture_pdf(
         &self,
-        at: &ScatterPoint,
         state: &SamplerState,
         dist: DistRef,
         mix: &ChannelMix,
         wi: Vec3,
+        bsdf_pdf: f32,
     ) -> f32 {
         let p = state.p_bsdf;
-        p * at.bsdf.pdf_with::<F>(at.wo, wi) + (1.0 - p) * dist.pdf(mix, wi)
+        p * bsdf_pdf + (1.0 - p) * dist.pdf(mix, wi)
     }
 
     /// The density with which this sampler draws `wi` at `at` for a path of white colour (the
@@ -480,11 +481,24 @@ impl<'a> GuidedSampler<'a> {
     /// [`GuidedSampler::pdf`] compiled for the effects `F`.
     #[inline]
     pub fn pdf_with<F: Features>(&self, at: &ScatterPoint, state: &SamplerState, wi: Vec3) -> f32 {
+        self.pdf_given_bsdf_with::<F>(at, state, wi, at.bsdf.pdf_with::<F>(at.wo, wi))
+    }
+
+    /// [`GuidedSampler::pdf_with`] of a direction whose BSDF density `bsdf_pdf` is known
+    /// already (from [`Bsdf::eval_and_lambert_pdf_with`]).
+    #[inline]
+    pub fn pdf_given_bsdf_with<F: Features>(
+        &self,
+        at: &ScatterPoint,
+        state: &SamplerState,
+        wi: Vec3,
+        bsdf_pdf: f32,
+    ) -> f32 {
         match (state.distribution(), &state.mix) {
             (Some(d), Some(mix)) if !at.bsdf.is_delta_with::<F>() => {
-                self.mixture_pdf::<F>(at, state, d, mix, wi)
+                self.mixture_pdf(state, d, mix, wi, bsdf_pdf)
             }
-            _ => at.bsdf.pdf_with::<F>(at.wo, wi),
+            _ => bsdf_pdf,
         }
     }
 }

@@ -390,9 +390,9 @@ impl Light {
             } => {
                 let cos_t = Self::sample_spot_cos(u_dir.x, *cos_inner, *cos_outer, *profile);
                 let sin_t = crate::math::safe_sqrt(1.0 - cos_t * cos_t);
-                let phi = 2.0 * PI * u_dir.y;
+                let (sin_phi, cos_phi) = crate::math::sin_cos_turns(u_dir.y);
                 let dir = frame
-                    .to_world(Vec3::new(sin_t * phi.cos(), sin_t * phi.sin(), cos_t))
+                    .to_world(Vec3::new(sin_t * cos_phi, sin_t * sin_phi, cos_t))
                     .normalize();
                 let le = self.emitted(dir);
                 let pdf_dir = self.pdf_le_dir(dir);

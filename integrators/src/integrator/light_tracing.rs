@@ -216,7 +216,7 @@ pub fn trace<'a, F: Features, W: LightShare>(
     }
 
     // ---- Emission direction, guided at area lights ----
-    let Some((origin, dir, beta)) = first_ray(&start, &ctx.light_sampler, state, rng) else {
+    let Some((origin, dir, beta)) = first_ray::<F>(&start, &ctx.light_sampler, state, rng) else {
         return;
     };
     let start = Start {

@@ -391,7 +391,11 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
         let Some(ls) = light.sample_li(v.hit.p, u_pos) else {
             return;
         };
-        let f = v.bsdf.eval_with::<F>(v.wo, ls.wi, TransportMode::Radiance);
+        // The Lambertian fast path gives the BSDF's density of `ls.wi` with `f`, for the
+        // weight below.
+        let (f, bsdf_pdf) =
+            v.bsdf
+                .eval_and_lambert_pdf_with::<F>(v.wo, ls.wi, TransportMode::Radiance);
         // Point and spot lights are the only delta lights.
         let delta = F::DELTA_LIGHTS && ls.delta;
         if f.max_element() <= 0.0 || !scene.visible(v.hit.p, v.hit.ng, ls.p, ls.n) {
@@ -407,7 +411,11 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
         let w_pt = if delta {
             1.0
         } else {
-            power_heuristic(ls.pdf_w * pmf, sampler.pdf_with::<F>(at, state, ls.wi))
+            let pdf = match bsdf_pdf {
+                Some(p) => sampler.pdf_given_bsdf_with::<F>(at, state, ls.wi, p),
+                None => sampler.pdf_with::<F>(at, state, ls.wi),
+            };
+            power_heuristic(ls.pdf_w * pmf, pdf)
         };
         self.out.pt += contrib * w_pt;
         self.learning.credit(contrib * w_pt);
