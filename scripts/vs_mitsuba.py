@@ -52,8 +52,11 @@ EXTERNAL = {
 
 
 def mitsuba():
+    """Mitsuba 3 in its `scalar_rgb` variant, with numpy beside it; both are installed from
+    PyPI when either is missing (a machine may have one without the other)."""
     try:
         import mitsuba as mi
+        import numpy  # noqa: F401
     except ImportError:
         print("installing Mitsuba 3 from PyPI ...", flush=True)
         subprocess.check_call([sys.executable, "-m", "pip", "install", "--quiet", "mitsuba", "numpy"])
@@ -63,9 +66,9 @@ def mitsuba():
 
 
 def mitsuba_batches(xml, defines, batches, spp):
+    mi = mitsuba()
     import numpy as np
 
-    mi = mitsuba()
     scene = mi.load_file(xml, **{k: str(v) for k, v in defines.items()})
     t0 = time.time()
     out = [np.array(mi.render(scene, spp=spp, seed=k), dtype=np.float64) for k in range(batches)]
@@ -73,9 +76,9 @@ def mitsuba_batches(xml, defines, batches, spp):
 
 
 def footprint_batches(xml, defines, batches, spp, extra=()):
+    mi = mitsuba()
     import numpy as np
 
-    mi = mitsuba()
     if not os.path.exists(FOOTPRINT):
         sys.exit(f"{FOOTPRINT} is missing: run `cargo build --release` first")
     out = []
@@ -151,9 +154,9 @@ def compare(a, b, block, alpha=0.01):
 
 
 def cmd_references(args):
+    mi = mitsuba()
     import numpy as np
 
-    mi = mitsuba()
     os.makedirs(REF_DIR, exist_ok=True)
     meta_path = os.path.join(REF_DIR, "references.json")
     meta = json.load(open(meta_path)) if os.path.exists(meta_path) else {}
@@ -319,8 +322,8 @@ def cmd_compare(args):
     rendering (footprint's includes its map passes; neither includes loading the scene), on
     the public scenes and the bundled scenes' XML, several seeds each; one table with the
     median relative MSE of each and their ratio."""
-    import numpy as np
     mi = mitsuba()
+    import numpy as np
     out = args.out or "compare-mitsuba"
     os.makedirs(out, exist_ok=True)
     rows = []

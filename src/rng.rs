@@ -14,7 +14,12 @@
 //! sequence has no dimension limit. A pair of numbers ([`Rng::uniform2`]) never straddles two
 //! groups, and [`Rng::start_vertex`] gives every scattering vertex its own groups so that the
 //! same decision (light choice, light point, direction, roulette) reads the same dimensions in
-//! every sample of a pixel, whatever the path did before. The scrambled sequence holds 2^16
+//! every sample of a pixel, whatever the path did before. Choices spend no dimension of
+//! their own where they can help it: the light choice reuses the light point's first number
+//! (`Scene::choose_light`), and a BSDF of one lobe draws no lobe number
+//! (`Bsdf::draw_numbers`), so that at a Lambertian vertex the light point's pair and the
+//! direction's pair share one group of four: the vertex costs one scrambled group, not
+//! two, and the two pairs are stratified together. The scrambled sequence holds 2^16
 //! points; passes beyond that draw independent numbers.
 
 use glam::Vec2;

@@ -26,9 +26,9 @@ pub struct LightStart<'s> {
 
 /// Chooses a light in proportion to power and samples a point and a direction on it.
 pub fn sample_light<'s>(scene: &'s Scene, rng: &mut Rng) -> Option<LightStart<'s>> {
-    let (index, pmf) = scene.light_distribution.sample(rng.uniform());
+    let (index, pmf, u_pos) = scene.choose_light(rng);
     let light = &scene.lights[index];
-    let em = light.sample_le(rng.uniform2(), rng.uniform2())?;
+    let em = light.sample_le(u_pos, rng.uniform2())?;
     Some(LightStart {
         index,
         light,

@@ -52,6 +52,7 @@ use crate::bsdf::material::{Material, MaterialKind};
 use crate::bsdf::microfacet::MicrofacetDistribution;
 use crate::bsdf::rough_plastic::RoughPlasticTables;
 use crate::math::{Frame, INV_PI, PI, Rgb, luminance, safe_sqrt};
+use crate::rng::Rng;
 use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use crate::scene::features::{Features, General};
 use glam::{Vec2, Vec3};
@@ -306,6 +307,20 @@ impl Lobes {
         }
     }
 
+    /// True for the kinds whose sampling reads a number to choose a lobe (or reflection
+    /// against refraction); the others (one lobe: Lambertian, a mirror, a conductor) read
+    /// none, and their vertices spend no dimension of the sequence on it.
+    fn chooses_a_lobe(&self) -> bool {
+        matches!(
+            self,
+            Lobes::Glossy { .. }
+                | Lobes::Plastic { .. }
+                | Lobes::RoughPlastic { .. }
+                | Lobes::ThinGlass { .. }
+                | Lobes::Glass { .. }
+        )
+    }
+
     /// True for the kinds that scatter through the surface (they ignore sidedness).
     fn transmits(&self) -> bool {
         matches!(self, Lobes::Glass { .. } | Lobes::ThinGlass { .. })
@@ -542,6 +557,21 @@ impl Bsdf {
             return None;
         }
         Some((lo, li))
+    }
+
+    /// The numbers [`Bsdf::sample`] reads, drawn from `rng` in a fixed order: the direction's
+    /// pair first, then the lobe's number only where the BSDF has a choice of lobes (0
+    /// otherwise, unread). A Lambertian vertex thus draws two numbers, and its direction keeps
+    /// the same dimensions of the sequence whatever the other vertices' materials.
+    #[inline]
+    pub fn draw_numbers(&self, rng: &mut Rng) -> (f32, Vec2) {
+        let u = rng.uniform2();
+        let u_lobe = if self.lobes.chooses_a_lobe() {
+            rng.uniform()
+        } else {
+            0.0
+        };
+        (u_lobe, u)
     }
 
     /// True when every lobe is a delta distribution, compiled for the effects `F` (false

@@ -365,9 +365,8 @@ impl<'a> GuidedSampler<'a> {
             _ => None,
         };
         let Some((dist, mix)) = guide else {
-            let s = at
-                .bsdf
-                .sample_with::<F>(at.wo, rng.uniform(), rng.uniform2(), at.mode)?;
+            let (u_lobe, u) = at.bsdf.draw_numbers(rng);
+            let s = at.bsdf.sample_with::<F>(at.wo, u_lobe, u, at.mode)?;
             return Some(DirectionSample {
                 wi: s.wi,
                 pdf_w: s.pdf_w,
@@ -379,10 +378,8 @@ impl<'a> GuidedSampler<'a> {
         };
         let p = state.p_bsdf;
         let (wi, guide_pdf) = if rng.uniform() < p {
-            let wi = at
-                .bsdf
-                .sample_with::<F>(at.wo, rng.uniform(), rng.uniform2(), at.mode)?
-                .wi;
+            let (u_lobe, u) = at.bsdf.draw_numbers(rng);
+            let wi = at.bsdf.sample_with::<F>(at.wo, u_lobe, u, at.mode)?.wi;
             (wi, dist.pdf(&mix, wi))
         } else {
             dist.sample_with_pdf(&mix, rng)?

@@ -30,6 +30,11 @@ use crate::scene::texture::Texture;
 use crate::settings::{GuideParams, MapSettings, RenderSettings};
 use glam::{Vec2, Vec3};
 
+/// The least probability of choosing a light for which the choice reuses the light point's
+/// number ([`Scene::choose_light`]): stretched back from an interval of width `2^-8`, a
+/// number keeps 16 of its 24 bits.
+pub const LIGHT_CHOICE_OWN_NUMBER: f32 = 1.0 / 256.0;
+
 /// Counts reported after loading.
 #[derive(Clone, Debug, Default)]
 pub struct LoadStats {
@@ -47,6 +52,8 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// Chooses lights in proportion to power.
     pub light_distribution: Distribution1D,
+    /// The light choice draws its own number (see [`Scene::choose_light`]).
+    pub light_choice_own_number: bool,
     pub bvh: Bvh,
     pub settings: RenderSettings,
     pub maps: MapSettings,
@@ -64,6 +71,26 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// A light chosen in proportion to its power, the probability of that choice, and the
+    /// pair of numbers for the point on it. The choice reuses the pair's first number,
+    /// stretched back to `[0, 1)` within the chosen light's interval
+    /// ([`Distribution1D::sample_remapped`]), so that next-event estimation and light paths
+    /// spend no dimension of the sequence on it: at a vertex the light point's pair and the
+    /// direction's pair share one group of four (`footprint::rng`), one scrambled group
+    /// instead of two. Where a light is chosen with probability under
+    /// [`LIGHT_CHOICE_OWN_NUMBER`] (thousands of emitting triangles: the stretched number
+    /// would keep too few bits), the choice draws a number of its own.
+    #[inline]
+    pub fn choose_light(&self, rng: &mut crate::rng::Rng) -> (usize, f32, Vec2) {
+        if self.light_choice_own_number {
+            let (i, pmf) = self.light_distribution.sample(rng.uniform());
+            return (i, pmf, rng.uniform2());
+        }
+        let u = rng.uniform2();
+        let (i, pmf, x) = self.light_distribution.sample_remapped(u.x);
+        (i, pmf, Vec2::new(x, u.y))
+    }
+
     /// Assembles a scene from its parts, builds the BVH and the light distribution and runs
     /// the effect analysis. Errors when there is no geometry or no light with power.
     #[allow(clippy::too_many_arguments)]
@@ -137,6 +164,7 @@ impl Scene {
             return Err("the scene has more than one environment light".into());
         }
         let environment_light = envs.first().copied();
+        let light_choice_own_number = light_distribution.min_pmf() < LIGHT_CHOICE_OWN_NUMBER;
         let bvh = Bvh::build(&triangles);
         let effects = Effects::analyse(&materials, &shading, &lights);
         Ok(Scene {
@@ -144,6 +172,7 @@ impl Scene {
             triangles,
             shading,
             materials,
+            light_choice_own_number,
             textures,
             lights,
             light_distribution,

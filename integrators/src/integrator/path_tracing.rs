@@ -380,13 +380,11 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
         state: &SamplerState,
         rng: &mut Rng,
     ) {
-        let u_light = rng.uniform();
-        let u_pos = rng.uniform2();
+        let scene = self.scene;
+        let (li, pmf, u_pos) = scene.choose_light(rng);
         if v.bsdf.is_delta_with::<F>() {
             return;
         }
-        let scene = self.scene;
-        let (li, pmf) = scene.light_distribution.sample(u_light);
         let light = &scene.lights[li];
         let Some(ls) = light.sample_li(v.hit.p, u_pos) else {
             return;
