@@ -996,25 +996,29 @@ fn maps_command(
 ) -> Result<()> {
     use footprint_integrators::map_picture::{PICTURE_K, density_picture};
     use footprint_integrators::maps::{Guidance, run_passes};
-    use footprint_integrators::passes::PassSettings;
+    use footprint_integrators::render::{pass_settings, with_target};
     if let Some(out) = out {
         std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     }
-    let pass = PassSettings {
-        paths: 0,
-        max_depth: max_depth.unwrap_or(scene.settings.max_depth),
-        rr_depth: footprint_integrators::walk::RR_START_DEPTH,
-        seed: seed.unwrap_or(scene.settings.seed),
-        soft_glossy_max: scene.maps.soft_glossy_max,
-        specialise: true,
-        target: None,
-    };
+    // Both maps, and their guide caches when the cache is on: what `combined-footprint` uses.
+    let method = Method::from_names("combined", "footprint").map_err(anyhow::Error::msg)?;
+    // The passes as `render` runs them for that method, relative importance target included
+    // (`render --maps FILE` must find the particles a render without the file would make).
+    let mut opts = RenderOptions::from_scene(scene).map_err(anyhow::Error::msg)?;
+    opts.method = method;
+    opts.auto = None;
+    opts.guide_params = params.clone();
+    if let Some(d) = max_depth {
+        opts.max_depth = d;
+    }
+    if let Some(s) = seed {
+        opts.seed = s;
+    }
+    let pass = with_target(scene, &opts, pass_settings(scene, &opts));
     println!(
         "maximum query distance {:.4} (scene units)",
         scene.map_max_dist()
     );
-    // Both maps, and their guide caches when the cache is on: what `combined-footprint` uses.
-    let method = Method::from_names("combined", "footprint").map_err(anyhow::Error::msg)?;
     let passes = run_passes(scene, &method, params, &pass);
     if let Some((path, hash)) = save {
         use footprint_integrators::maps_file;
