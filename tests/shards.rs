@@ -261,6 +261,15 @@ fn bad_maps_files_are_refused_naming_the_file() {
     set(&mut args, "--seed", "4");
     let err = fails(&args);
     assert!(err.contains("seed=3") && err.contains(s(&maps)), "{err}");
+    // The view pass without the relative importance target the render would give it.
+    let mut args = base(&scene, "lt-footprint");
+    args.extend(["--maps", s(&maps), "--out", s(&out)]);
+    set(&mut args, "--relative-importance", "off");
+    let err = fails(&args);
+    assert!(
+        err.contains("relative_importance=on") && err.contains("relative_importance=off"),
+        "{err}"
+    );
     // Another scene: the same file names, another material.
     let other = workdir("badmaps-other");
     let mtl = other.join("cornell.mtl");

@@ -1022,7 +1022,13 @@ fn maps_command(
     let passes = run_passes(scene, &method, params, &pass);
     if let Some((path, hash)) = save {
         use footprint_integrators::maps_file;
-        let key = maps_file::maps_key(&hash, scene, pass.max_depth, pass.seed);
+        let key = maps_file::maps_key(
+            &hash,
+            scene,
+            pass.max_depth,
+            pass.seed,
+            params.relative_importance,
+        );
         maps_file::save(&path, &key, &passes)?;
         let count = |p: &Option<footprint_integrators::passes::PassOutput>| {
             p.as_ref().map(|o| o.particles.len()).unwrap_or(0)
@@ -1162,6 +1168,7 @@ fn render_command(
                 scene,
                 opts.max_depth,
                 opts.seed,
+                opts.guide_params.relative_importance,
             );
             let passes = footprint_integrators::maps_file::load(path, &key)?;
             let (light, view) = needed_passes(&opts.method, &opts.guide_params);

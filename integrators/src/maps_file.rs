@@ -40,8 +40,16 @@ const HEADER: usize = 8 + 4 + 8 + 32;
 
 /// What the passes depend on, as `name=value` words; a file is used only for a render whose
 /// key is equal. With several map rounds the later rounds are guided by the earlier ones'
-/// maps, so the guide parameters are part of the key too.
-pub fn maps_key(scene_hash: &str, scene: &Scene, max_depth: u32, seed: u64) -> String {
+/// maps, so the guide parameters are part of the key too; the view pass follows the relative
+/// importance target when `relative_importance` is on (`render::with_target`), so that
+/// switch is as well.
+pub fn maps_key(
+    scene_hash: &str,
+    scene: &Scene,
+    max_depth: u32,
+    seed: u64,
+    relative_importance: bool,
+) -> String {
     let rounds = if scene.maps.rounds > 1 {
         let g = &scene.guide;
         format!(
@@ -61,12 +69,13 @@ pub fn maps_key(scene_hash: &str, scene: &Scene, max_depth: u32, seed: u64) -> S
         String::new()
     };
     format!(
-        "scene={scene_hash} resolution={}x{} photons={} importons={} max_depth={max_depth} seed={seed} soft_glossy_max={}{rounds}",
+        "scene={scene_hash} resolution={}x{} photons={} importons={} max_depth={max_depth} seed={seed} soft_glossy_max={} relative_importance={}{rounds}",
         scene.camera.width,
         scene.camera.height,
         scene.maps.photons,
         scene.maps.importons,
-        scene.maps.soft_glossy_max
+        scene.maps.soft_glossy_max,
+        if relative_importance { "on" } else { "off" }
     )
 }
 
