@@ -210,9 +210,10 @@ fn run_chunks<'a>(
     all
 }
 
-/// Walks one particle path, storing into `out`.
+/// Walks one particle path in the loop compiled for the effects `F` (the passes choose `F`
+/// once, [`PassSettings::specialisation`]), storing into `out`.
 #[allow(clippy::too_many_arguments)]
-fn trace<'a>(
+fn trace<'a, F: Features>(
     scene: &Scene,
     s: &PassSettings,
     start: &Start,
@@ -221,15 +222,13 @@ fn trace<'a>(
     rng: &mut Rng,
     out: &mut ChunkOut,
 ) {
-    crate::specialised!(s.specialisation(scene), F => {
-        let mut v = Storing::<F> {
-            soft_glossy_max: s.soft_glossy_max,
-            specular_chain: true,
-            out,
-            features: PhantomData,
-        };
-        walk(scene, start, sampler, state, rng, &mut v);
-    });
+    let mut v = Storing::<F> {
+        soft_glossy_max: s.soft_glossy_max,
+        specular_chain: true,
+        out,
+        features: PhantomData,
+    };
+    walk(scene, start, sampler, state, rng, &mut v);
 }
 
 /// The light pass: a photon map's particles. `sampler` chooses the directions (BSDF
@@ -247,15 +246,12 @@ fn light_paths(
 ) -> PassOutput {
     let start = Instant::now();
     let inv_n = 1.0 / s.paths.max(1) as f32;
-    let which = s.specialisation(scene);
-    let all = run_chunks(paths.clone(), |i, out, state| {
+    let all = crate::specialised!(s.specialisation(scene), F => run_chunks(paths.clone(), |i, out, state| {
         let mut rng = Rng::new(s.seed, DOMAIN_LIGHT_PASS, i as u64);
         let Some(start) = sample_light(scene, &mut rng) else {
             return;
         };
-        let first =
-            crate::specialised!(which, F => first_ray::<F>(&start, sampler, state, &mut rng));
-        let Some((origin, dir, beta)) = first else {
+        let Some((origin, dir, beta)) = first_ray::<F>(&start, sampler, state, &mut rng) else {
             return;
         };
         if let Some(n) = start.em.n {
@@ -274,8 +270,8 @@ fn light_paths(
             max_vertex_depth: s.max_depth,
             rr_depth: s.rr_depth,
         };
-        trace(scene, s, &start, sampler, state, &mut rng, out);
-    });
+        trace::<F>(scene, s, &start, sampler, state, &mut rng, out);
+    }));
     let emitted = scene.lights.iter().map(|l| l.power_rgb()).sum();
     PassOutput {
         particles: all.particles,
@@ -298,7 +294,7 @@ pub fn view_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> Pa
     let cam = &scene.camera;
     let inv_n = 1.0 / s.paths.max(1) as f32;
     let size = Vec2::new(cam.width as f32, cam.height as f32);
-    let all = run_chunks(0..s.paths, |i, out, state| {
+    let all = crate::specialised!(s.specialisation(scene), F => run_chunks(0..s.paths, |i, out, state| {
         let mut rng = Rng::new(s.seed, DOMAIN_VIEW_PASS, i as u64);
         let raster = rng.uniform2() * size;
         let w = inv_n * s.target.as_ref().map_or(1.0, |t| t.at(raster));
@@ -311,8 +307,8 @@ pub fn view_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> Pa
             max_vertex_depth: s.max_depth,
             rr_depth: s.rr_depth,
         };
-        trace(scene, s, &start, sampler, state, &mut rng, out);
-    });
+        trace::<F>(scene, s, &start, sampler, state, &mut rng, out);
+    }));
     PassOutput {
         particles: all.particles,
         emission_points: all.emission_points,
