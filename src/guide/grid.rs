@@ -272,9 +272,18 @@ fn quantise(p: impl Iterator<Item = f64>) -> Vec<u32> {
     let mut left = QUANTUM.saturating_sub(given) as usize;
     if left > 0 {
         let mut order: Vec<usize> = (0..c.len()).filter(|&i| scaled[i] > 0.0).collect();
-        order.sort_by(|&a, &b| {
-            (scaled[b] - scaled[b].floor()).total_cmp(&(scaled[a] - scaled[a].floor()))
-        });
+        // Largest remainder first, the lower cell first among equal ones. Only the `left`
+        // first are needed (more only by rounding of the sum, then all of them): they are
+        // selected, not sorted.
+        let first = |a: &usize, b: &usize| {
+            (scaled[*b] - scaled[*b].floor())
+                .total_cmp(&(scaled[*a] - scaled[*a].floor()))
+                .then(a.cmp(b))
+        };
+        if left < order.len() {
+            order.select_nth_unstable_by(left, first);
+            order.truncate(left);
+        }
         // More remainder than cells with mass happens only by rounding of the sum.
         while left > 0 && !order.is_empty() {
             for &i in order.iter().take(left) {

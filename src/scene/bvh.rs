@@ -8,11 +8,18 @@
 //! [`ORIGIN_BACKOFF`] behind its origin and accepts only triangles beyond that distance, so
 //! every hit in front of the true origin lies in boxes the node test keeps. Directions have
 //! their negative zeros made positive (see [`canonical_zeros`]).
+//!
+//! The traversal is obvhs' (`obvhs::traverse!`) with a node test of our own,
+//! [`child_hits`]: the same slab arithmetic as obvhs' `intersect_ray_simd`, so the same
+//! children are entered and every image is the same bit for bit, but the mask of entered
+//! children is assembled without a branch per child (obvhs tests each of the eight lanes
+//! with a branch the ray's data decides, which mispredicts).
 
 use crate::scene::geometry::TriangleGeom;
-use glam::{Vec3, Vec3A};
+use glam::{UVec2, Vec3, Vec3A};
 use obvhs::cwbvh::CwBvh;
-use obvhs::ray::{Ray as BvhRay, RayHit};
+use obvhs::cwbvh::node::CwBvhNode;
+use obvhs::ray::Ray as BvhRay;
 use obvhs::triangle::Triangle as BvhTriangle;
 use obvhs::{BvhBuildParams, cwbvh::builder::build_cwbvh_from_tris};
 use std::time::Duration;
@@ -33,8 +40,116 @@ fn canonical_zeros(d: Vec3) -> Vec3 {
     d + Vec3::ZERO
 }
 
-/// How far behind its origin a query ray starts (more than obvhs' node epsilon of 1e-4).
+/// How far behind its origin a query ray starts (more than the node test's [`NODE_EPSILON`]).
 pub const ORIGIN_BACKOFF: f32 = 4e-4;
+
+/// Boxes the ray leaves before this distance are culled (obvhs' own node test's constant,
+/// kept so that the same boxes are entered).
+const NODE_EPSILON: f32 = 1e-4;
+
+/// The traversal's mask of the children of `node` the ray enters within `[NODE_EPSILON,
+/// ray.tmax]` (obvhs' `CwBvhNode::intersect_ray` contract: for an inner child its bit in
+/// the top byte, for a leaf its triangles' bits in the low 24).
+///
+/// The slab test is obvhs' `intersect_ray_simd` operation for operation: the quantised
+/// planes (bytes) widened to floats, scaled by the node's power-of-two extent and offset,
+/// four children at a time, so the same children are entered. Each entered child's bits
+/// are `child_bits << bit_index`, computed for four lanes at once: `2^bit_index` is built
+/// as a float's exponent and converted (2^31 converts to `0x8000_0000`, the one
+/// out-of-range case, whose result is that same bit pattern), multiplied by the child bits
+/// (at most 7, below bit 24 for leaves; 1 for inner children), masked with the slab test's
+/// lanes and or-ed across lanes.
+#[cfg(all(target_arch = "x86_64", target_feature = "sse4.1"))]
+#[inline(always)]
+fn child_hits(node: &CwBvhNode, ray: &BvhRay, oct_inv4: u32) -> u32 {
+    use std::arch::x86_64::*;
+    let extent = Vec3A::new(
+        f32::from_bits((node.e[0] as u32) << 23),
+        f32::from_bits((node.e[1] as u32) << 23),
+        f32::from_bits((node.e[2] as u32) << 23),
+    );
+    let scale = extent * ray.inv_direction;
+    let offset = (Vec3A::from(node.p) - ray.origin) * ray.inv_direction;
+    let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
+    // SAFETY: SSE4.1 is enabled for this build (the cfg above); the loads read plain
+    // integers out of the node's byte arrays.
+    unsafe {
+        let planes = |bytes: &[u8; 8], half: usize| -> __m128 {
+            let word = u32::from_le_bytes([
+                bytes[4 * half],
+                bytes[4 * half + 1],
+                bytes[4 * half + 2],
+                bytes[4 * half + 3],
+            ]);
+            _mm_cvtepi32_ps(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(word as i32)))
+        };
+        let lanes = |x: u64, half: usize| -> __m128i {
+            _mm_cvtepu8_epi32(_mm_cvtsi32_si128((x >> (32 * half)) as u32 as i32))
+        };
+        let (sx, sy, sz) = (
+            _mm_set1_ps(scale.x),
+            _mm_set1_ps(scale.y),
+            _mm_set1_ps(scale.z),
+        );
+        let (ox, oy, oz) = (
+            _mm_set1_ps(offset.x),
+            _mm_set1_ps(offset.y),
+            _mm_set1_ps(offset.z),
+        );
+        let near_far = |lo: __m128, hi: __m128, negative: bool| {
+            if negative { (hi, lo) } else { (lo, hi) }
+        };
+        let mut hits = _mm_setzero_si128();
+        for half in 0..2 {
+            let (nx, fx) = near_far(
+                planes(&node.child_min_x, half),
+                planes(&node.child_max_x, half),
+                ray.direction.x < 0.0,
+            );
+            let (ny, fy) = near_far(
+                planes(&node.child_min_y, half),
+                planes(&node.child_max_y, half),
+                ray.direction.y < 0.0,
+            );
+            let (nz, fz) = near_far(
+                planes(&node.child_min_z, half),
+                planes(&node.child_max_z, half),
+                ray.direction.z < 0.0,
+            );
+            let t_near = _mm_max_ps(
+                _mm_add_ps(_mm_mul_ps(nx, sx), ox),
+                _mm_max_ps(
+                    _mm_add_ps(_mm_mul_ps(ny, sy), oy),
+                    _mm_add_ps(_mm_mul_ps(nz, sz), oz),
+                ),
+            );
+            let t_far = _mm_min_ps(
+                _mm_add_ps(_mm_mul_ps(fx, sx), ox),
+                _mm_min_ps(
+                    _mm_add_ps(_mm_mul_ps(fy, sy), oy),
+                    _mm_add_ps(_mm_mul_ps(fz, sz), oz),
+                ),
+            );
+            let t_near = _mm_max_ps(t_near, _mm_set1_ps(NODE_EPSILON));
+            let t_far = _mm_min_ps(t_far, _mm_set1_ps(ray.tmax));
+            let entered = _mm_castps_si128(_mm_cmple_ps(t_near, t_far));
+            let exponent = _mm_add_epi32(lanes(bit_index8, half), _mm_set1_epi32(127));
+            let pow2 = _mm_cvttps_epi32(_mm_castsi128_ps(_mm_slli_epi32(exponent, 23)));
+            let bits = _mm_mullo_epi32(lanes(child_bits8, half), pow2);
+            hits = _mm_or_si128(hits, _mm_and_si128(bits, entered));
+        }
+        let hits = _mm_or_si128(hits, _mm_shuffle_epi32(hits, 0b01_00_11_10));
+        let hits = _mm_or_si128(hits, _mm_shuffle_epi32(hits, 0b10_11_00_01));
+        _mm_cvtsi128_si32(hits) as u32
+    }
+}
+
+/// Without SSE4.1: obvhs' own node test.
+#[cfg(not(all(target_arch = "x86_64", target_feature = "sse4.1")))]
+#[inline(always)]
+fn child_hits(node: &CwBvhNode, ray: &BvhRay, oct_inv4: u32) -> u32 {
+    node.intersect_ray(ray, oct_inv4)
+}
 
 pub struct Bvh {
     bvh: CwBvh,
@@ -80,26 +195,30 @@ impl Bvh {
             0.0,
             t_max + ORIGIN_BACKOFF,
         );
-        let mut hit = RayHit::none();
-        let mut best = (0.0f32, 0.0f32);
-        let found = self.bvh.ray_traverse(ray, &mut hit, |r, id| {
-            match self.ordered[id].intersect_range(start, dir, ORIGIN_BACKOFF, r.tmax) {
-                Some((t, b1, b2)) => {
-                    best = (b1, b2);
-                    t
+        let mut ray = ray;
+        let mut best: Option<(u32, f32, f32)> = None;
+        let mut state = self.bvh.new_traversal(ray.direction);
+        let mut node: &CwBvhNode;
+        obvhs::traverse!(
+            self.bvh,
+            node,
+            state,
+            child_hits(node, &ray, state.oct_inv4),
+            {
+                let id = state.primitive_id;
+                // Only a t below the closest so far is accepted, and the ray's end moves
+                // there: `best` is the closest candidate.
+                if let Some((t, b1, b2)) =
+                    self.ordered[id as usize].intersect_range(start, dir, ORIGIN_BACKOFF, ray.tmax)
+                {
+                    ray.tmax = t;
+                    best = Some((id, b1, b2));
                 }
-                None => f32::INFINITY,
             }
-        });
-        // `best` holds the barycentrics of the last accepted (closest so far) candidate: the
-        // traversal only accepts a t below the current t_max, and it passes that t_max in.
-        if !found {
-            return None;
-        }
-        let (b1, b2) = best;
-        Some(BvhHit {
-            triangle: self.original[hit.primitive_id as usize],
-            t: (hit.t - ORIGIN_BACKOFF).max(f32::MIN_POSITIVE),
+        );
+        best.map(|(id, b1, b2)| BvhHit {
+            triangle: self.original[id as usize],
+            t: (ray.tmax - ORIGIN_BACKOFF).max(f32::MIN_POSITIVE),
             b1,
             b2,
         })
@@ -116,12 +235,27 @@ impl Bvh {
             0.0,
             t_max + ORIGIN_BACKOFF,
         );
-        self.bvh.ray_traverse_miss(ray, |r, id| {
-            match self.ordered[id].intersect_range(start, dir, ORIGIN_BACKOFF, r.tmax) {
-                Some((t, _, _)) => t,
-                None => f32::INFINITY,
-            }
-        })
+        let mut state = self.bvh.new_traversal(ray.direction);
+        let mut node: &CwBvhNode;
+        let mut clear = true;
+        'traversal: {
+            obvhs::traverse!(
+                self.bvh,
+                node,
+                state,
+                child_hits(node, &ray, state.oct_inv4),
+                {
+                    if self.ordered[state.primitive_id as usize]
+                        .intersect_range(start, dir, ORIGIN_BACKOFF, ray.tmax)
+                        .is_some()
+                    {
+                        clear = false;
+                        break 'traversal;
+                    }
+                }
+            );
+        }
+        clear
     }
 
     pub fn node_count(&self) -> usize {
@@ -134,5 +268,55 @@ impl Bvh {
             + self.ordered.len() * std::mem::size_of::<TriangleGeom>()
             + self.original.len() * 4
             + self.bvh.primitive_indices.len() * 4
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::Rng;
+    use crate::sampling::sample_uniform_sphere;
+
+    /// Our node test enters exactly the children obvhs' own does (`intersect_ray`), for
+    /// every node of a BVH over a random soup of 2000 triangles and rays from random
+    /// points in random directions (axis-aligned ones included, whose reciprocals are
+    /// huge), with finite and infinite ends.
+    #[test]
+    fn node_test_enters_the_children_obvhs_enters() {
+        let mut rng = Rng::new(31, 0, 0);
+        let mut p = |rng: &mut Rng| Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
+        let tris: Vec<TriangleGeom> = (0..2000)
+            .map(|_| {
+                let c = p(&mut rng) * 10.0;
+                TriangleGeom::new(
+                    c,
+                    c + (p(&mut rng) - 0.5) * 0.8,
+                    c + (p(&mut rng) - 0.5) * 0.8,
+                )
+            })
+            .collect();
+        let bvh = Bvh::build(&tris);
+        assert!(bvh.node_count() > 50);
+        let mut entered = 0usize;
+        for i in 0..400 {
+            let o = p(&mut rng) * 12.0 - 1.0;
+            let d = match i % 8 {
+                0 => Vec3::X,
+                1 => -Vec3::Z + Vec3::ZERO,
+                _ => sample_uniform_sphere(rng.uniform2()),
+            };
+            let t_max = if i % 2 == 0 { f32::INFINITY } else { 4.0 };
+            let ray = BvhRay::new(Vec3A::from(o), Vec3A::from(d), 0.0, t_max);
+            let state = bvh.bvh.new_traversal(ray.direction);
+            for node in &bvh.bvh.nodes {
+                let ours = child_hits(node, &ray, state.oct_inv4);
+                assert_eq!(ours, node.intersect_ray(&ray, state.oct_inv4), "ray {i}");
+                entered += (ours != 0) as usize;
+            }
+        }
+        assert!(
+            entered > 1000,
+            "too few nodes entered ({entered}) to test anything"
+        );
     }
 }
