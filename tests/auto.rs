@@ -149,3 +149,31 @@ fn auto_without_room_for_a_pilot_renders_unguided() {
     assert_eq!(c.method.name(), "pt-bsdf");
     assert!(c.reason.contains("no pilot"), "{}", c.reason);
 }
+
+/// Guides are piloted only where the scene is hard per sample: where the camera sees mostly
+/// the light's glow one unguided pass has a small relative variance and no guide is piloted
+/// (its maps would fit: small maps, a long sample budget); on door, whose light reaches the
+/// camera's room through a gap, the footprints are piloted.
+#[test]
+fn only_scenes_hard_per_sample_pilot_guides() {
+    let easy = glow_scene();
+    let mut hard = load_scene(&common::scene_path("door")).unwrap();
+    hard.camera = hard.camera.with_resolution(32, 32).unwrap();
+    for (name, mut scene, guided) in [("glow", easy, false), ("door", hard, true)] {
+        scene.maps.photons = 20_000;
+        scene.maps.importons = 20_000;
+        let o = RenderOptions {
+            spp: 4000,
+            ..opts()
+        };
+        let c = choose(&scene, &o, &AutoSpec::all());
+        eprintln!("{name}: {}: {}", c.method.name(), c.reason);
+        let gated = c.reason.contains("footprint not piloted: one pass of");
+        assert_eq!(gated, !guided, "{name}: {}", c.reason);
+        let piloted = c
+            .candidates
+            .iter()
+            .any(|c| c.method.ends_with("-footprint"));
+        assert_eq!(piloted, guided, "{name}: {}", c.reason);
+    }
+}

@@ -31,9 +31,12 @@
 //!   difference to the combined mean (less what its noise explains) is added as `b²_m`,
 //!   measured on blocks of pixels that hold [`BIAS_BLOCK_SAMPLES`] pilot samples: a
 //!   point-light caustic seen only by the light tracer rules path tracing out.
-//! * **Guided candidates** (`--guide auto`) are piloted only when their maps are predicted to
-//!   take at most [`GUIDED_MAPS_SHARE`] of the budget (the passes' paths at the pilot's time
-//!   per path); the guides share one pilot's time ([`PILOT_SHARE`] / the number of guides
+//! * **Guided candidates** (`--guide auto`) are piloted only where one pass of the best
+//!   unguided candidate has at least [`GUIDED_MIN_PASS_VARIANCE`] relative variance (a scene
+//!   hard per sample), and when their maps are predicted to take at most
+//!   [`FIRST_GUIDE_MAPS_SHARE`] of the budget for the first guide, [`GUIDED_MAPS_SHARE`]
+//!   for all together after it (the passes' paths at the pilot's time per path); the guides
+//!   share one pilot's time ([`PILOT_SHARE`] / the number of guides
 //!   each); their maps are then built once, piloted with the same passes, and reused by
 //!   the render if one of them wins. With one map round the particle passes do not depend on
 //!   the guide: they run once and every guide builds its maps and caches from them. A
@@ -67,9 +70,24 @@ use std::time::{Duration, Instant};
 
 /// Share of a time budget the unguided pilot takes.
 pub const PILOT_SHARE: f64 = 0.04;
-/// Guided candidates are piloted only when their maps are predicted to take at most this
-/// share of the budget.
+/// Guided candidates are piloted only when the scene is hard enough
+/// ([`GUIDED_MIN_PASS_VARIANCE`]) and their maps are predicted to take at most this share of
+/// the budget, all guides piloted so far included...
 pub const GUIDED_MAPS_SHARE: f64 = 0.15;
+/// ...or, for the first guide piloted (the paper's footprints), this share: where a scene is
+/// hard, guiding won by 3-10x, and door's footprint maps and pilot (3.4 s of 16 s on a slow
+/// day of the 2-core VM) no longer fitted 15%, which left `auto` with unguided light tracing
+/// there (4-4.6x behind `lt-footprint`).
+pub const FIRST_GUIDE_MAPS_SHARE: f64 = 0.25;
+/// Guided candidates are piloted only where one pass of the unguided candidate the pilot
+/// predicts best has at least this relative variance (the metric's, averaged over pixels
+/// and channels: about the squared relative noise of one sample per pixel). Below it the
+/// image converges without guiding, and a guided pilot (maps, caches and passes: 20-24% of
+/// a 16-s budget on cornell) costs more than guiding wins. Measured (one pass of the best
+/// unguided method): furnace 0.02, Bitterli's Cornell box 0.4, cornell 0.8, features 1.5,
+/// desk 2.8 (guided methods lose or tie at equal time on all five) against Veach Ajar 48
+/// and door 2650 (guided methods 3-10x ahead); README "auto: the renderer chooses".
+pub const GUIDED_MIN_PASS_VARIANCE: f64 = 10.0;
 /// A guided candidate is chosen only when predicted better than BSDF sampling of its own
 /// integrator by this factor (else the next candidate is). The pilot's passes are
 /// independent samples, but the render's are a Sobol sequence, whose stratification gains
@@ -631,6 +649,24 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     let secs = [t_c, t_pt, t_lt];
     // Guided maps are piloted even when they do not fit when nothing else is wanted.
     let only_guided = spec.candidates.iter().all(|m| m.guide.uses_particles());
+    // How hard the scene is per sample: the relative variance of one pass of the unguided
+    // candidate predicted best, from the unguided pilot alone (its own image as `R`).
+    let easy_scene = {
+        let scale = Metric::mean_luminance(&reference);
+        let metric = Metric::with_scale(scene.camera.width, &reference, scale);
+        let folds = fold_metrics(scene, None, &pilot, scale);
+        let mut own = measure(
+            scene, &pilot, &reference, &metric, &folds, true, secs, "bsdf",
+        );
+        own.retain(|c| wanted(&c.method));
+        let time_left = horizon(start.elapsed().as_secs_f64());
+        for c in &mut own {
+            c.predict_at(time_left);
+        }
+        own.into_iter()
+            .min_by(|a, b| a.predicted.total_cmp(&b.predicted))
+            .filter(|c| c.pass_variance < GUIDED_MIN_PASS_VARIANCE)
+    };
     let mut notes = Vec::new();
     // ---- Guided pilots, when their maps fit ----
     let mut built: Vec<(String, Guidance)> = Vec::new();
@@ -674,12 +710,23 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
                     + budget.map_or(0.0, |t| guided_pilot * t)
             }
         };
+        if let (Some(c), false) = (&easy_scene, only_guided) {
+            notes.push(format!(
+                "{gname} not piloted: one pass of {} has relative variance {:.2}, under {GUIDED_MIN_PASS_VARIANCE} (guiding does not repay its maps where unguided passes are this good)",
+                c.method, c.pass_variance
+            ));
+            continue;
+        }
         let spent = guided_start.elapsed().as_secs_f64();
-        let allowed = GUIDED_MAPS_SHARE * horizon(0.0);
-        if spent + maps_est > allowed && !only_guided {
+        let maps_share = if pilots.is_empty() {
+            FIRST_GUIDE_MAPS_SHARE
+        } else {
+            GUIDED_MAPS_SHARE
+        };
+        if spent + maps_est > maps_share * horizon(0.0) && !only_guided {
             notes.push(format!(
                 "{gname} not piloted: its maps and pilot would take about {maps_est:.2} s, more than {:.0}% of {:.2} s",
-                100.0 * GUIDED_MAPS_SHARE,
+                100.0 * maps_share,
                 horizon(0.0)
             ));
             continue;

@@ -59,7 +59,7 @@ fn guide_values() -> PossibleValuesParser {
             .iter()
             .map(|g| PossibleValue::new(g.name()).help(g.about()))
             .chain([PossibleValue::new("auto").help(
-                "Chosen by a short pilot (guided candidates when their maps fit the budget)",
+                "Chosen by a short pilot (guided candidates where the scene is hard per sample and their maps fit the budget)",
             )]),
     )
 }
