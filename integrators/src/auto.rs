@@ -82,7 +82,7 @@ pub const FIRST_GUIDE_MAPS_SHARE: f64 = 0.25;
 /// Guided candidates are piloted only where one pass of the unguided candidate the pilot
 /// predicts best has at least this relative variance (the metric's, averaged over pixels
 /// and channels: about the squared relative noise of one sample per pixel). Below it the
-/// image converges without guiding, and a guided pilot (maps, caches and passes: 20-24% of
+/// image converges without guiding, and a guided pilot (maps, caches and passes: 24-29% of
 /// a 16-s budget on cornell) costs more than guiding wins. Measured (one pass of the best
 /// unguided method): furnace 0.02, Bitterli's Cornell box 0.4, cornell 0.8, features 1.5,
 /// desk 2.8 (guided methods lose or tie at equal time on all five) against Veach Ajar 48
