@@ -649,21 +649,27 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     let secs = [t_c, t_pt, t_lt];
     // Guided maps are piloted even when they do not fit when nothing else is wanted.
     let only_guided = spec.candidates.iter().all(|m| m.guide.uses_particles());
-    // How hard the scene is per sample: the relative variance of one pass of the unguided
-    // candidate predicted best, from the unguided pilot alone (its own image as `R`).
-    let easy_scene = {
+    // The unguided candidates measured on the unguided pilot alone (its own image as `R`):
+    // what they are when no guide is piloted, and how hard the scene is per sample (the
+    // relative variance of one pass of the one predicted best).
+    let unguided_alone = {
         let scale = Metric::mean_luminance(&reference);
         let metric = Metric::with_scale(scene.camera.width, &reference, scale);
         let folds = fold_metrics(scene, None, &pilot, scale);
-        let mut own = measure(
+        measure(
             scene, &pilot, &reference, &metric, &folds, true, secs, "bsdf",
-        );
-        own.retain(|c| wanted(&c.method));
+        )
+    };
+    let easy_scene = {
         let time_left = horizon(start.elapsed().as_secs_f64());
-        for c in &mut own {
-            c.predict_at(time_left);
-        }
-        own.into_iter()
+        unguided_alone
+            .iter()
+            .filter(|c| wanted(&c.method))
+            .map(|c| {
+                let mut c = c.clone();
+                c.predict_at(time_left);
+                c
+            })
             .min_by(|a, b| a.predicted.total_cmp(&b.predicted))
             .filter(|c| c.pass_variance < GUIDED_MIN_PASS_VARIANCE)
     };
@@ -821,16 +827,21 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         all_pooled.pool(&p.layers[0]);
     }
     let scale = Metric::mean_luminance(&all_pooled);
-    let base = others(None);
-    let metric = Metric::with_scale(
-        scene.camera.width,
-        base.as_ref().unwrap_or(&reference),
-        scale,
-    );
-    let folds = fold_metrics(scene, base.as_ref(), &pilot, scale);
-    let mut all = measure(
-        scene, &pilot, &reference, &metric, &folds, true, secs, "bsdf",
-    );
+    // Without guided pilots the weights are the unguided pilot's own, as measured above.
+    let mut all = if pilots.is_empty() {
+        unguided_alone
+    } else {
+        let base = others(None);
+        let metric = Metric::with_scale(
+            scene.camera.width,
+            base.as_ref().unwrap_or(&reference),
+            scale,
+        );
+        let folds = fold_metrics(scene, base.as_ref(), &pilot, scale);
+        measure(
+            scene, &pilot, &reference, &metric, &folds, true, secs, "bsdf",
+        )
+    };
     for (j, (gname, p, secs)) in pilots.iter().enumerate() {
         let rest = others(Some(j)).expect("the unguided pilot");
         let own = Metric::with_scale(scene.camera.width, &rest, scale);

@@ -43,6 +43,21 @@ fn canonical_zeros(d: Vec3) -> Vec3 {
 /// How far behind its origin a query ray starts (more than the node test's [`NODE_EPSILON`]).
 pub const ORIGIN_BACKOFF: f32 = 4e-4;
 
+/// A query's ray as the traversal takes it: the direction without negative zeros, the
+/// start [`ORIGIN_BACKOFF`] behind `origin`, and the end moved back as far.
+#[inline(always)]
+fn query_ray(origin: Vec3, dir: Vec3, t_max: f32) -> (Vec3, Vec3, BvhRay) {
+    let dir = canonical_zeros(dir);
+    let start = origin - ORIGIN_BACKOFF * dir;
+    let ray = BvhRay::new(
+        Vec3A::from(start),
+        Vec3A::from(dir),
+        0.0,
+        t_max + ORIGIN_BACKOFF,
+    );
+    (start, dir, ray)
+}
+
 /// Boxes the ray leaves before this distance are culled (obvhs' own node test's constant,
 /// kept so that the same boxes are entered).
 const NODE_EPSILON: f32 = 1e-4;
@@ -187,15 +202,7 @@ impl Bvh {
     /// Closest hit along `origin + t dir`, `0 < t < t_max`.
     #[inline]
     pub fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<BvhHit> {
-        let dir = canonical_zeros(dir);
-        let start = origin - ORIGIN_BACKOFF * dir;
-        let ray = BvhRay::new(
-            Vec3A::from(start),
-            Vec3A::from(dir),
-            0.0,
-            t_max + ORIGIN_BACKOFF,
-        );
-        let mut ray = ray;
+        let (start, dir, mut ray) = query_ray(origin, dir, t_max);
         let mut best: Option<(u32, f32, f32)> = None;
         let mut state = self.bvh.new_traversal(ray.direction);
         let mut node: &CwBvhNode;
@@ -227,14 +234,7 @@ impl Bvh {
     /// True when nothing blocks `origin + t dir` for `0 < t < t_max` (shadow rays).
     #[inline]
     pub fn unoccluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
-        let dir = canonical_zeros(dir);
-        let start = origin - ORIGIN_BACKOFF * dir;
-        let ray = BvhRay::new(
-            Vec3A::from(start),
-            Vec3A::from(dir),
-            0.0,
-            t_max + ORIGIN_BACKOFF,
-        );
+        let (start, dir, ray) = query_ray(origin, dir, t_max);
         let mut state = self.bvh.new_traversal(ray.direction);
         let mut node: &CwBvhNode;
         let mut clear = true;
@@ -302,7 +302,8 @@ mod tests {
             let o = p(&mut rng) * 12.0 - 1.0;
             let d = match i % 8 {
                 0 => Vec3::X,
-                1 => -Vec3::Z + Vec3::ZERO,
+                // Negative zeros in x and y (the node test reads the sign for the slab order).
+                1 => -Vec3::Z,
                 _ => sample_uniform_sphere(rng.uniform2()),
             };
             let t_max = if i % 2 == 0 { f32::INFINITY } else { 4.0 };
