@@ -12,11 +12,14 @@
 //!   ([`crate::window`]): a pixel's own pilot mean is heavy-tailed and usually
 //!   low where rare bright paths carry the light, and `1 / (R² + 0.01)` of a low `R`
 //!   overweights exactly the pixels guiding helps (door with a 3x3 window: `lt-footprint`
-//!   predicted 4x its error). `R` pools every pilot's combined image, but a pilot's passes
-//!   are dealt to [`FOLDS`] folds and each fold's squared deviations are weighed with `R`
-//!   without that fold's passes (cross-fitting: a bright sample must not raise the `R` that
-//!   weighs it). Measured with the truth's `R` (door's 900-s reference), the predictions
-//!   matched 16-s renders within 1.1x (`lt-footprint` 151 per pass against 140-160).
+//!   predicted 4x its error). `R` pools every pilot's combined image, each pilot weighed by
+//!   the inverse of its variance ([`Pooled`]), but a pilot's passes are dealt to [`FOLDS`]
+//!   folds and each fold's squared deviations are weighed with `R` without that fold's
+//!   passes (cross-fitting: a bright sample must not raise the `R` that weighs it), read
+//!   over a window sized by the noise of every pass (a fold must not be weighed with the
+//!   near-zero `R` of passes that missed its rare light, [`fold_metrics`]). Measured with
+//!   the truth's `R` (door's 900-s reference), the predictions matched 16-s renders within
+//!   1.1x (`lt-footprint` 151 per pass against 140-160).
 //! * **Paths the pilot missed.** A few passes miss a method's rare, bright paths (door's
 //!   unguided path tracing: 14 passes predicted 0.063 where 16 s measure 0.81). The pilot's
 //!   combined image also estimates each estimate's second moment by MIS from every path,
@@ -44,10 +47,12 @@
 //!   When a method that reads the photon map wins, its sparse photon map grows with the time
 //!   left, as a fixed method's grows with its budget
 //!   ([`crate::render::chosen_guidance`]).
-//! * **A margin for guiding.** A guided candidate must be predicted [`GUIDED_MARGIN`] times
-//!   better than BSDF sampling of its own integrator: the pilot's passes are independent
-//!   samples, and what the render's Sobol sequence gains over thousands of passes it cannot
-//!   measure (it gains BSDF sampling more; see the constant).
+//! * **Margins.** A guided candidate must be predicted [`GUIDED_MARGIN`] times better than
+//!   BSDF sampling of its own integrator: the pilot's passes are independent samples, and
+//!   what the render's Sobol sequence gains over thousands of passes it cannot measure (it
+//!   gains BSDF sampling more; see the constant). A guided combined image must be predicted
+//!   [`SPLIT_MARGIN`] times better than its guide's path and light tracers: they split, it
+//!   does not, and the pilot measures all three unsplit.
 //! * **Budget.** With `--time T` the pilot takes about [`PILOT_SHARE`] of `T` (at least
 //!   [`MIN_BATCHES`] passes) and counts in the budget: the render stops at `T`, pilot
 //!   included. With `--spp N` the pilot's [`MIN_BATCHES`] passes are extra, the candidates
@@ -99,6 +104,16 @@ pub const GUIDED_MIN_PASS_VARIANCE: f64 = 10.0;
 /// by far more than its prediction says, and a margin against the best unguided method of
 /// either direction chose `pt-bsdf` there (6x behind).
 pub const GUIDED_MARGIN: f64 = 1.3;
+/// A guided combined image is chosen only when predicted better than the better of its own
+/// guide's path and light tracer by this factor (else the next candidate is). The pilot
+/// measures all three unsplit, from the combined image's layers; but a guided path or light
+/// tracer splits where its guide expects more light (guided splitting), the combined image
+/// does not, and what splitting gains the pilot cannot see. Measured: door 16 s, seed 2,
+/// `combined-footprint` predicted 0.730 and `lt-footprint` 0.736, rendered 0.67-1.31
+/// against 0.30-0.35; Veach Ajar 30 s, seeds 1 and 3, `combined-footprint` predicted at
+/// most 1.1x the error of `pt-footprint`, rendered 0.0122 and 0.0123 against 0.0086 and
+/// 0.0115.
+pub const SPLIT_MARGIN: f64 = 1.3;
 /// Fewest and most pilot passes per set of candidates.
 pub const MIN_BATCHES: usize = 4;
 pub const MAX_BATCHES: usize = 48;
@@ -276,6 +291,69 @@ impl Moments {
         let n = self.n as f64;
         let m = self.sum[i][c] / n;
         ((self.sum2[i][c] - n * m * m) / (n - 1.0)).max(0.0)
+    }
+}
+
+/// The image as several pilots estimate it together, for the metric's `R`: each pilot's
+/// mean weighed by its passes over its per-pass variance (inverse-variance pooling, one
+/// weight per pilot, image-wide). Pooling passes alike let the noisiest pilot set `R`: on
+/// door 20-odd unguided passes of relative variance 2650 each outweighed a guided pilot's
+/// 5 of 160, and the window `R` is read over widened until it blurred the light the guided
+/// passes carry (`lt-footprint` predicted at 2-3x its error). Weights per pilot, not per
+/// pixel: a pixel's own variance rises with its bright samples, and weighing by it would
+/// pull `R` down where rare paths carry the light.
+struct Pooled {
+    mean: Vec<[f64; 3]>,
+    /// The variance of `mean`.
+    var_of_mean: Vec<[f64; 3]>,
+}
+
+impl Pooled {
+    /// From `parts` (each pilot's passes; those without passes are left out).
+    fn new(parts: &[&Moments]) -> Self {
+        let npix = parts.first().map_or(0, |m| m.sum.len());
+        let parts: Vec<&Moments> = parts.iter().copied().filter(|m| m.n > 0).collect();
+        // Each pilot's per-pass variance, averaged over pixels and channels; a single pass
+        // has none to measure and counts as the noisiest of the others.
+        let per_pass: Vec<Option<f64>> = parts
+            .iter()
+            .map(|m| {
+                (m.n > 1).then(|| {
+                    let v: f64 = (0..npix)
+                        .map(|i| (0..3).map(|c| m.var(i, c)).sum::<f64>())
+                        .sum();
+                    v / (3 * npix.max(1)) as f64
+                })
+            })
+            .collect();
+        let noisiest = per_pass.iter().flatten().fold(0.0f64, |a, &b| a.max(b));
+        // Weights relative to the noisiest pilot's (so a pilot that measured no variance,
+        // a black image, weighs 1e9 of it and none overflows).
+        let weight: Vec<f64> = parts
+            .iter()
+            .zip(&per_pass)
+            .map(|(m, v)| {
+                let v = v.unwrap_or(noisiest);
+                if noisiest > 0.0 {
+                    m.n as f64 * noisiest / v.max(1e-9 * noisiest)
+                } else {
+                    m.n as f64
+                }
+            })
+            .collect();
+        let total: f64 = weight.iter().sum();
+        let mut mean = vec![[0.0; 3]; npix];
+        let mut var_of_mean = vec![[0.0; 3]; npix];
+        for (m, a) in parts.iter().zip(&weight) {
+            let (a, n) = (a / total, m.n as f64);
+            for i in 0..npix {
+                for c in 0..3 {
+                    mean[i][c] += a * m.mean(i, c);
+                    var_of_mean[i][c] += a * a * m.var(i, c) / n;
+                }
+            }
+        }
+        Pooled { mean, var_of_mean }
     }
 }
 
@@ -506,14 +584,13 @@ impl Metric {
     }
 
     /// The weights from `reference`, the image divided by `scale`: `R` read over a window
-    /// widened where the pilot's mean is noisy ([`crate::window`]).
-    fn with_scale(width: u32, reference: &Moments, scale: f64) -> Self {
-        let n = reference.n.max(1) as f64;
+    /// widened where the pilots' mean is noisy ([`crate::window`]).
+    fn with_scale(width: u32, reference: &Pooled, scale: f64) -> Self {
         let means = crate::window::window_means(
             width as usize,
-            reference.sum.len(),
-            &|i, c| reference.mean(i, c),
-            &|i, c| reference.var(i, c) / n,
+            reference.mean.len(),
+            &|i, c| reference.mean[i][c],
+            &|i, c| reference.var_of_mean[i][c],
             0.1 * scale,
         );
         let weight = means
@@ -546,30 +623,61 @@ impl Metric {
 }
 
 /// The weights of each fold of `pilot` ([`FOLDS`]): `R` from `base` (the other pilots'
-/// combined images pooled) and the pilot's own passes but the fold's, so that no pass is
-/// weighed with an `R` its own noise raised.
-fn fold_metrics(
-    scene: &Scene,
-    base: Option<&Moments>,
-    pilot: &Pilot,
-    scale: f64,
-) -> [Metric; FOLDS] {
+/// combined images) and the pilot's own passes but the fold's, so that no pass is weighed
+/// with an `R` its own noise raised; but the window `R` is read over is sized by the noise
+/// of every pass, the fold's included. Where light arrives by rare bright paths, the folds
+/// without one see a dim, smooth image and a small window, so the fold holding it was
+/// weighed with `1 / (R² + 0.01)` of a near-zero `R` (door: `lt-footprint` predicted at
+/// 377-575 per pass against a true 218, measured over 404 independent passes, and ranked
+/// behind `pt-footprint`; sized by every pass: 166 and 258, `pt-footprint` 306-337 against
+/// 340).
+fn fold_metrics(width: u32, base: &[&Moments], pilot: &Pilot, scale: f64) -> [Metric; FOLDS] {
+    let mut every = base.to_vec();
+    every.push(&pilot.layers[0]);
+    let noise = Pooled::new(&every).var_of_mean;
     std::array::from_fn(|k| {
-        let mut r = pilot.layers[0].clone();
-        if let Some(b) = base {
-            r.pool(b);
-        }
+        let mut own = pilot.layers[0].clone();
         let fold = &pilot.folds[k][0];
-        if fold.n < r.n {
-            r.remove(fold);
+        if fold.n < own.n {
+            own.remove(fold);
         }
-        Metric::with_scale(scene.camera.width, &r, scale)
+        let mut parts = base.to_vec();
+        parts.push(&own);
+        let r = Pooled {
+            var_of_mean: noise.clone(),
+            ..Pooled::new(&parts)
+        };
+        Metric::with_scale(width, &r, scale)
     })
 }
 
 /// The second-moment layers' estimate for the image layer `l` (combined, pt, lt).
 fn estimate_index(l: usize) -> usize {
     [moments::COMBINED, moments::PT, moments::LT][l]
+}
+
+/// The prediction among `all` that candidate `c` fails to beat by its margin, with the
+/// margin and what it is, if any: a guided candidate must beat BSDF sampling of its own
+/// integrator by [`GUIDED_MARGIN`], and a guided combined image the better of its own
+/// guide's pt and lt by [`SPLIT_MARGIN`].
+fn rival(all: &[Candidate], c: &Candidate) -> Option<(f64, f64, &'static str)> {
+    let m = Method::parse(&c.method).ok().filter(|m| m.guided())?;
+    let predicted = |name: String| all.iter().find(|o| o.method == name).map(|o| o.predicted);
+    let bsdf = predicted(format!("{}-bsdf", m.integrator.name()))
+        .map(|u| (u, GUIDED_MARGIN, "BSDF sampling of its integrator"));
+    let split = (m.integrator.name() == "combined")
+        .then(|| {
+            ["pt", "lt"]
+                .iter()
+                .filter_map(|i| predicted(format!("{i}-{}", m.guide.name())))
+                .min_by(f64::total_cmp)
+        })
+        .flatten()
+        .map(|u| (u, SPLIT_MARGIN, "its guide's pt or lt, which split"));
+    [bsdf, split]
+        .into_iter()
+        .flatten()
+        .find(|(u, margin, _)| *u < margin * c.predicted)
 }
 
 /// Runs the pilot for `opts` (whose `auto` names the candidates; its `time` is the budget)
@@ -654,8 +762,8 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     // relative variance of one pass of the one predicted best).
     let unguided_alone = {
         let scale = Metric::mean_luminance(&reference);
-        let metric = Metric::with_scale(scene.camera.width, &reference, scale);
-        let folds = fold_metrics(scene, None, &pilot, scale);
+        let metric = Metric::with_scale(scene.camera.width, &Pooled::new(&[&reference]), scale);
+        let folds = fold_metrics(scene.camera.width, &[], &pilot, scale);
         measure(
             scene, &pilot, &reference, &metric, &folds, true, secs, "bsdf",
         )
@@ -807,17 +915,14 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     // guided pilot's own `R` its candidates came out 3-9x too low. With the other pilots'
     // `R` alone the guided candidates, weighed with the noisy unguided image, came out
     // 1.5-4x too high (door `lt-footprint`, Veach Ajar `pt-footprint`).
-    let others = |skip: Option<usize>| -> Option<Moments> {
-        let mut pooled: Option<Moments> = skip.map(|_| reference.clone());
-        for (j, (_, p, _)) in pilots.iter().enumerate() {
-            if Some(j) != skip {
-                match &mut pooled {
-                    Some(r) => r.pool(&p.layers[0]),
-                    None => pooled = Some(p.layers[0].clone()),
-                }
-            }
-        }
-        pooled
+    // The pilots are pooled by inverse variance ([`Pooled`]).
+    let others = |skip: Option<usize>| -> Vec<&Moments> {
+        let unguided = skip.map(|_| &reference);
+        let guided = pilots.iter().enumerate().filter(|(j, _)| Some(*j) != skip);
+        unguided
+            .into_iter()
+            .chain(guided.map(|(_, (_, p, _))| &p.layers[0]))
+            .collect()
     };
     // One scale for every candidate: the image's mean luminance from every pilot pooled
     // (an image-wide mean, barely correlated with any pilot's per-pixel noise); only the
@@ -832,20 +937,16 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         unguided_alone
     } else {
         let base = others(None);
-        let metric = Metric::with_scale(
-            scene.camera.width,
-            base.as_ref().unwrap_or(&reference),
-            scale,
-        );
-        let folds = fold_metrics(scene, base.as_ref(), &pilot, scale);
+        let metric = Metric::with_scale(scene.camera.width, &Pooled::new(&base), scale);
+        let folds = fold_metrics(scene.camera.width, &base, &pilot, scale);
         measure(
             scene, &pilot, &reference, &metric, &folds, true, secs, "bsdf",
         )
     };
     for (j, (gname, p, secs)) in pilots.iter().enumerate() {
-        let rest = others(Some(j)).expect("the unguided pilot");
-        let own = Metric::with_scale(scene.camera.width, &rest, scale);
-        let folds = fold_metrics(scene, Some(&rest), p, scale);
+        let rest = others(Some(j));
+        let own = Metric::with_scale(scene.camera.width, &Pooled::new(&rest), scale);
+        let folds = fold_metrics(scene.camera.width, &rest, p, scale);
         all.extend(measure(
             scene, p, &reference, &own, &folds, false, *secs, gname,
         ));
@@ -869,21 +970,16 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     }
     all.retain(|c| wanted(&c.method));
     all.sort_by(|a, b| a.predicted.total_cmp(&b.predicted));
-    // A guided candidate must beat BSDF sampling of its own integrator by GUIDED_MARGIN:
-    // else it steps aside for the next candidate.
-    let counterpart = |c: &Candidate| -> Option<f64> {
-        let m = Method::parse(&c.method).ok().filter(|m| m.guided())?;
-        let own = format!("{}-bsdf", m.integrator.name());
-        all.iter().find(|o| o.method == own).map(|o| o.predicted)
-    };
+    // A guided candidate must beat its rivals by their margins, else it steps aside for
+    // the next candidate.
     let stepped: Vec<usize> = (0..all.len())
-        .filter(|&i| counterpart(&all[i]).is_some_and(|u| u < GUIDED_MARGIN * all[i].predicted))
+        .filter(|&i| rival(&all, &all[i]).is_some())
         .collect();
     if stepped.first() == Some(&0) {
         let c = &all[0];
-        let u = counterpart(c).expect("stepped aside");
+        let (u, margin, what) = rival(&all, c).expect("stepped aside");
         notes.push(format!(
-            "{} stepped aside: predicted only {:.2}x better than BSDF sampling (a guided method must be {GUIDED_MARGIN}x)",
+            "{} stepped aside: predicted only {:.2}x better than {what} (it must be {margin}x)",
             c.method,
             u / c.predicted
         ));
@@ -953,6 +1049,152 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand_xoshiro::Xoshiro256PlusPlus;
+    use rand_xoshiro::rand_core::{Rng, SeedableRng};
+
+    fn image(w: usize, h: usize, value: impl Fn(usize) -> f32) -> Image {
+        Image {
+            width: w as u32,
+            height: h as u32,
+            pixels: (0..w * h).map(|i| Rgb::splat(value(i))).collect(),
+        }
+    }
+
+    /// Two pilots of the same image (every pixel 1): 20 passes with per-pass noise of
+    /// standard deviation 3, and 5 passes with 0.3. Pooled by inverse variance, the mean's
+    /// standard error is `1 / sqrt(20 / 9 + 5 / 0.09)` = 0.132 per pixel; pooled pass by pass
+    /// (as before), `sqrt(20 * 9 + 5 * 0.09) / 25` = 0.537. Over 256 pixels of independent
+    /// noise (fixed seed) the root-mean-square error has a relative standard deviation of
+    /// about `1 / sqrt(2 * 256)` = 4.4%, so 1.2x 0.132 (4.5 of those) bounds the first and
+    /// lies far below the second.
+    #[test]
+    fn pooled_weighs_each_pilot_by_its_noise() {
+        let (w, h) = (16usize, 16usize);
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(7);
+        // `passes` passes of every pixel 1 plus uniform noise of standard deviation `sd`
+        // (half-width sd * sqrt(3)).
+        let mut pilot = |passes: usize, sd: f64| {
+            let mut m = Moments::new(w * h);
+            for _ in 0..passes {
+                let pixels = (0..w * h)
+                    .map(|_| {
+                        let u = (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+                        Rgb::splat((1.0 + sd * 3f64.sqrt() * (2.0 * u - 1.0)) as f32)
+                    })
+                    .collect();
+                m.add(&Image {
+                    width: w as u32,
+                    height: h as u32,
+                    pixels,
+                });
+            }
+            m
+        };
+        let (a, b) = (pilot(20, 3.0), pilot(5, 0.3));
+        let pooled = Pooled::new(&[&a, &b]);
+        let rms = |mean: &dyn Fn(usize) -> f64| {
+            ((0..w * h).map(|i| (mean(i) - 1.0).powi(2)).sum::<f64>() / (w * h) as f64).sqrt()
+        };
+        let by_noise = rms(&|i| pooled.mean[i][0]);
+        let by_pass = rms(&|i| (a.sum[i][0] + b.sum[i][0]) / 25.0);
+        assert!(
+            by_noise < 1.2 * 0.132,
+            "pooled by noise: rms error {by_noise}"
+        );
+        assert!(
+            by_pass > 2.0 * by_noise,
+            "pooled by pass {by_pass}, by noise {by_noise}"
+        );
+        // The variance it reports is the pooled mean's, 0.132² on average (per-pixel sample
+        // variances of 5 uniform passes: a relative standard deviation of about 0.5 each,
+        // 0.03 over 256 pixels; 0.15 is 5 of those).
+        let reported = (0..w * h).map(|i| pooled.var_of_mean[i][0]).sum::<f64>() / (w * h) as f64;
+        assert!(
+            (reported / (0.132 * 0.132) - 1.0).abs() < 0.15,
+            "reported {reported}"
+        );
+    }
+
+    fn candidate(method: &str, predicted: f64) -> Candidate {
+        Candidate {
+            method: method.into(),
+            predicted,
+            pass_seconds: 0.01,
+            pass_variance: 1.0,
+            unseen: 0.0,
+            missing: 0.0,
+        }
+    }
+
+    /// The margins: door's seed-2 predictions (`combined-footprint` 0.730 against
+    /// `lt-footprint` 0.736) make the combined image step aside for the light tracer, which
+    /// splits; far ahead of both tracers it stays; a guided tracer must beat its own
+    /// integrator's BSDF sampling by 1.3x, and unguided candidates have no rival.
+    #[test]
+    fn guided_candidates_beat_their_rivals_by_the_margins() {
+        let all = [
+            candidate("combined-footprint", 0.730),
+            candidate("lt-footprint", 0.736),
+            candidate("pt-footprint", 0.877),
+            candidate("combined-bsdf", 3.06),
+            candidate("pt-bsdf", 1.0),
+            candidate("lt-bsdf", 2.39),
+        ];
+        let (u, margin, _) = rival(&all, &all[0]).expect("steps aside");
+        assert_eq!((u, margin), (0.736, SPLIT_MARGIN));
+        assert!(
+            rival(&all, &all[1]).is_none(),
+            "lt-footprint 3.2x ahead of lt-bsdf"
+        );
+        let (u, margin, _) = rival(&all, &all[2]).expect("only 1.14x ahead of pt-bsdf");
+        assert_eq!((u, margin), (1.0, GUIDED_MARGIN));
+        assert!(all[3..].iter().all(|c| rival(&all, c).is_none()));
+        // Far ahead of its guide's tracers the combined image is chosen.
+        let ahead = [
+            candidate("combined-footprint", 0.5),
+            all[1].clone(),
+            all[3].clone(),
+        ];
+        assert!(rival(&ahead, &ahead[0]).is_none());
+        // The margin is against its own guide's tracers, not another guide's.
+        let grid = [
+            candidate("combined-footprint", 0.5),
+            candidate("lt-grid", 0.4),
+        ];
+        assert!(rival(&grid, &grid[0]).is_none());
+    }
+
+    /// A fold is not weighed with the `R` of passes that missed its rare light. A 64x64
+    /// image: the left half a constant 1 in every pass, the right half dark but for one
+    /// bright sample (50) at one pixel in pass 0, which lies in fold 0. The other passes see
+    /// zeros there, so a window sized by their noise alone stays 3x3 and reads `R` = 0: the
+    /// fold's bright sample weighed 100 (`1 / 0.01`). Sized by every pass, the window grows
+    /// until its standard error is small and reaches the lit half: a weight of at most 20
+    /// (`R` about 0.24, its radius-16 window a quarter lit).
+    #[test]
+    fn a_fold_is_weighed_with_a_window_sized_by_every_pass() {
+        let (w, h, n) = (64usize, 64usize, 8usize);
+        let bright = 32 * w + 40;
+        let mut pilot = Pilot::new(w * h);
+        for pass in 0..n {
+            let img = image(w, h, |i| {
+                if i % w < w / 2 {
+                    1.0
+                } else if i == bright && pass == 0 {
+                    50.0
+                } else {
+                    0.0
+                }
+            });
+            pilot.layers[0].add(&img);
+            pilot.folds[pass % FOLDS][0].add(&img);
+        }
+        let folds = fold_metrics(w as u32, &[], &pilot, 1.0);
+        let weight = folds[0].weight[bright][0];
+        assert!(weight < 20.0, "the bright sample's weight {weight}");
+        // The other folds hold the sample in their `R`, as before.
+        assert!(folds[1].weight[bright][0] < 20.0);
+    }
 
     /// The metric's `R` widens its window where the pilot's mean is noisy and keeps 3x3
     /// where it is not. A 64x64 image: the left half a constant 1 from passes that agree,
@@ -984,7 +1226,7 @@ mod tests {
                 pixels,
             });
         }
-        let metric = Metric::with_scale(w as u32, &m, 1.0);
+        let metric = Metric::with_scale(w as u32, &Pooled::new(&[&m]), 1.0);
         let r_of = |i: usize| (1.0 / metric.weight[i][0] - 0.01).max(0.0).sqrt();
         // Beside the firefly.
         let r = r_of(spike + 1);
