@@ -245,6 +245,37 @@ fn bad_flags() {
         &["resolution", "0x10"],
     );
     expect_error("flag-threads", &files, &["--threads", "0"], &["threads"]);
+    expect_error(
+        "flag-accel",
+        &files,
+        &["--accel", "kdtree"],
+        &["accel", "kdtree"],
+    );
+}
+
+/// An unknown `FOOTPRINT_ACCEL` is an error naming the variable, not a silent default.
+#[test]
+fn an_unknown_accel_variable_is_named() {
+    let d = dir_with(
+        "env-accel",
+        &[
+            ("q.obj", QUAD_OBJ),
+            ("m.mtl", MTL),
+            ("s.toml", &scene("") as &str),
+        ],
+    );
+    let out = Command::new(env!("CARGO_BIN_EXE_footprint"))
+        .env("FOOTPRINT_ACCEL", "kdtree")
+        .arg("render")
+        .arg(d.join("s.toml"))
+        .arg("--out")
+        .arg(d.join("out.exr"))
+        .output()
+        .expect("the binary runs");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("FOOTPRINT_ACCEL=kdtree"), "{stderr}");
+    assert!(!d.join("out.exr").exists());
 }
 
 /// `--help` is not an error: it prints to stdout and exits with 0.

@@ -1,18 +1,41 @@
-//! The BVH's closest hit equals a brute-force loop over all triangles, on random rays through
-//! every bundled scene (rays from random points in the scene's bounds, in uniform
-//! directions), and its shadow-ray query agrees with the closest hit.
+//! Each acceleration structure's closest hit equals a brute-force loop over all triangles,
+//! on random rays through every bundled scene (rays from random points in the scene's
+//! bounds, in uniform directions), and its shadow-ray query agrees with the closest hit:
+//! footprint's own CWBVH always, Embree where the system has it (skipped visibly where not).
 
 mod common;
 
 use common::scene_path;
 use footprint::rng::Rng;
 use footprint::sampling::sample_uniform_sphere;
+use footprint::scene::accel::{Accel, Backend};
+use footprint::scene::embree;
 use footprint::scene::load::load_scene;
+
+/// The backends to test: the CWBVH, and Embree when it loads.
+fn backends(test: &str) -> Vec<Backend> {
+    match embree::available() {
+        Ok(()) => vec![Backend::Cwbvh, Backend::Embree],
+        Err(why) => {
+            common::skip(&format!("{test} (Embree)"), &why);
+            vec![Backend::Cwbvh]
+        }
+    }
+}
 
 #[test]
 fn bvh_matches_brute_force_on_every_scene() {
-    for name in ["cornell", "door", "desk", "furnace"] {
+    for (name, backend) in ["cornell", "door", "desk", "furnace"]
+        .into_iter()
+        .flat_map(|n| {
+            backends("bvh_matches_brute_force_on_every_scene")
+                .into_iter()
+                .map(move |b| (n, b))
+        })
+    {
         let scene = load_scene(&scene_path(name)).unwrap();
+        let accel = Accel::build_with(&scene.triangles, backend).unwrap();
+        let name = format!("{name} ({})", accel.name());
         let (lo, hi) = scene.bounds;
         let mut rng = Rng::new(21, 0, 0);
         let mut hits = 0;
@@ -28,7 +51,7 @@ fn bvh_matches_brute_force_on_every_scene() {
                     best = Some((t, i));
                 }
             }
-            let got = scene.bvh.intersect(o, d, f32::INFINITY);
+            let got = accel.intersect(o, d, f32::INFINITY);
             // An origin within rounding distance of a surface makes "is it in front?"
             // ambiguous; the renderer never starts rays there (origins are offset).
             let eps = 1e-5;
@@ -63,13 +86,13 @@ fn bvh_matches_brute_force_on_every_scene() {
                         "{name}: barycentrics"
                     );
                     assert!(
-                        !scene.bvh.unoccluded(o, d, h.t + tol),
+                        !accel.unoccluded(o, d, h.t + tol),
                         "{name}: shadow ray missed a hit: o {o:?} d {d:?} t {} tri {}",
                         h.t,
                         h.triangle
                     );
                     assert!(
-                        h.t <= tol || scene.bvh.unoccluded(o, d, h.t - tol),
+                        h.t <= tol || accel.unoccluded(o, d, h.t - tol),
                         "{name}: shadow ray hit before the closest hit"
                     );
                 }
@@ -88,22 +111,25 @@ fn bvh_matches_brute_force_on_every_scene() {
 #[test]
 fn surfaces_close_to_the_origin_are_hit() {
     let scene = load_scene(&scene_path("cornell")).unwrap();
-    let mut rng = Rng::new(22, 0, 0);
-    for gap in [1e-3f32, 1e-4, 5e-5, 2e-5] {
-        for _ in 0..1000 {
-            // Just above the floor (y = 0) near the open front, clear of the blocks,
-            // heading down at a random slant.
-            let o = glam::Vec3::new(0.5 + 4.0 * rng.uniform(), gap, 0.2 + 0.3 * rng.uniform());
-            let d = glam::Vec3::new(rng.uniform() - 0.5, -1.0, rng.uniform() - 0.5).normalize();
-            let h = scene
-                .bvh
-                .intersect(o, d, f32::INFINITY)
-                .expect("the floor is hit");
-            assert!((h.t * -d.y - gap).abs() <= 1e-5, "gap {gap}: t {}", h.t);
-            assert!(
-                !scene.bvh.unoccluded(o, d, 1.0),
-                "gap {gap}: shadow ray passed through the floor"
-            );
+    for backend in backends("surfaces_close_to_the_origin_are_hit") {
+        let accel = Accel::build_with(&scene.triangles, backend).unwrap();
+        let mut rng = Rng::new(22, 0, 0);
+        for gap in [1e-3f32, 1e-4, 5e-5, 2e-5] {
+            for _ in 0..1000 {
+                // Just above the floor (y = 0) near the open front, clear of the blocks,
+                // heading down at a random slant.
+                let o = glam::Vec3::new(0.5 + 4.0 * rng.uniform(), gap, 0.2 + 0.3 * rng.uniform());
+                let d = glam::Vec3::new(rng.uniform() - 0.5, -1.0, rng.uniform() - 0.5).normalize();
+                let h = accel
+                    .intersect(o, d, f32::INFINITY)
+                    .expect("the floor is hit");
+                assert!((h.t * -d.y - gap).abs() <= 1e-5, "gap {gap}: t {}", h.t);
+                assert!(
+                    !accel.unoccluded(o, d, 1.0),
+                    "{}: gap {gap}: shadow ray passed through the floor",
+                    accel.name()
+                );
+            }
         }
     }
 }
@@ -113,19 +139,23 @@ fn surfaces_close_to_the_origin_are_hit() {
 #[test]
 fn axis_aligned_rays_with_negative_zeros_hit() {
     let scene = load_scene(&scene_path("cornell")).unwrap();
-    let o = glam::Vec3::new(4.2, 1.0, 1.2);
-    for (d, what) in [
-        (-glam::Vec3::Y, "floor"),
-        (glam::Vec3::Y, "ceiling"),
-        (glam::Vec3::Z, "back wall"),
-        (-glam::Vec3::X, "green wall"),
-        (glam::Vec3::X, "red wall"),
-    ] {
-        let h = scene.bvh.intersect(o, d, f32::INFINITY);
-        assert!(h.is_some(), "{what}: missed along {d:?}");
-        assert!(
-            !scene.bvh.unoccluded(o, d, 100.0),
-            "{what}: shadow ray passed"
-        );
+    for backend in backends("axis_aligned_rays_with_negative_zeros_hit") {
+        let accel = Accel::build_with(&scene.triangles, backend).unwrap();
+        let o = glam::Vec3::new(4.2, 1.0, 1.2);
+        for (d, what) in [
+            (-glam::Vec3::Y, "floor"),
+            (glam::Vec3::Y, "ceiling"),
+            (glam::Vec3::Z, "back wall"),
+            (-glam::Vec3::X, "green wall"),
+            (glam::Vec3::X, "red wall"),
+        ] {
+            let h = accel.intersect(o, d, f32::INFINITY);
+            assert!(h.is_some(), "{what}: missed along {d:?}");
+            assert!(
+                !accel.unoccluded(o, d, 100.0),
+                "{}: {what}: shadow ray passed",
+                accel.name()
+            );
+        }
     }
 }

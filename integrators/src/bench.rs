@@ -56,9 +56,10 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
     }
     let rps = rays as f64 / start.elapsed().as_secs_f64();
     println!(
-        "door: {:.2} M closest-hit rays/s ({} triangles)",
+        "door: {:.2} M closest-hit rays/s ({} triangles, {})",
         rps / 1e6,
-        door.triangles.len()
+        door.triangles.len(),
+        door.bvh.name()
     );
 
     // ---- Particle maps: build time, and k = 50 queries on door's maps ----

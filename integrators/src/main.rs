@@ -39,6 +39,11 @@ fn heap_bytes() -> Option<usize> {
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Acceleration structure: Embree 3 where the system has it (`libembree3`, loaded at
+    /// run time; Debian: libembree3-3), else footprint's own CWBVH [default:
+    /// FOOTPRINT_ACCEL, else auto]
+    #[arg(long, global = true, value_enum)]
+    accel: Option<footprint::scene::accel::Backend>,
 }
 
 /// `--integrator`'s values: the registered integrators, with their help lines.
@@ -554,6 +559,9 @@ fn main() {
             std::process::exit(if e.use_stderr() { 1 } else { 0 });
         }
     };
+    if let Some(backend) = cli.accel {
+        footprint::scene::accel::set_backend(backend);
+    }
     if let Err(e) = run(cli) {
         eprintln!("error: {e:#}");
         std::process::exit(1);
@@ -1239,6 +1247,7 @@ fn render_command(
             "footprint/sequence".to_string(),
             opts.sequence.name().to_string(),
         ),
+        ("footprint/accel".to_string(), scene.bvh.name().to_string()),
         (
             "footprint/guide_params".to_string(),
             format!(

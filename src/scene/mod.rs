@@ -3,9 +3,11 @@
 //! loaders are the submodules: geometry and the BVH, the camera, lights, textures, the
 //! effect analysis, and the TOML/OBJ and Mitsuba 3 XML loaders behind [`load`].
 
+pub mod accel;
 pub mod bvh;
 pub mod camera;
 pub mod effects;
+pub mod embree;
 pub mod features;
 pub mod geometry;
 pub mod light;
@@ -18,7 +20,7 @@ pub mod toml_file;
 use crate::bsdf::material::{Material, MaterialKind};
 use crate::bsdf::{Bsdf, Lobes, SurfaceLobes};
 use crate::sampling::Distribution1D;
-use crate::scene::bvh::Bvh;
+use crate::scene::accel::Accel;
 use crate::scene::camera::Camera;
 use crate::scene::effects::Effects;
 use crate::scene::features::{Features, General};
@@ -54,7 +56,7 @@ pub struct Scene {
     pub light_distribution: Distribution1D,
     /// The light choice draws its own number (see [`Scene::choose_light`]).
     pub light_choice_own_number: bool,
-    pub bvh: Bvh,
+    pub bvh: Accel,
     pub settings: RenderSettings,
     pub maps: MapSettings,
     pub guide: GuideParams,
@@ -165,7 +167,7 @@ impl Scene {
         }
         let environment_light = envs.first().copied();
         let light_choice_own_number = light_distribution.min_pmf() < LIGHT_CHOICE_OWN_NUMBER;
-        let bvh = Bvh::build(&triangles);
+        let bvh = Accel::build(&triangles)?;
         let effects = Effects::analyse(&materials, &shading, &lights);
         Ok(Scene {
             camera,
