@@ -314,42 +314,43 @@ impl Pooled {
         let npix = parts.first().map_or(0, |m| m.sum.len());
         let parts: Vec<&Moments> = parts.iter().copied().filter(|m| m.n > 0).collect();
         // Each pilot's per-pass variance, averaged over pixels and channels; a single pass
-        // has none to measure and counts as the noisiest of the others.
+        // (or a variance that is not a finite positive number) has none to measure, and the
+        // pilot counts as the noisiest of the others, at every pixel.
         let per_pass: Vec<Option<f64>> = parts
             .iter()
             .map(|m| {
-                (m.n > 1).then(|| {
-                    let v: f64 = (0..npix)
-                        .map(|i| (0..3).map(|c| m.var(i, c)).sum::<f64>())
-                        .sum();
-                    v / (3 * npix.max(1)) as f64
-                })
+                let v: f64 = (0..npix)
+                    .map(|i| (0..3).map(|c| m.var(i, c)).sum::<f64>())
+                    .sum();
+                let v = v / (3 * npix.max(1)) as f64;
+                (m.n > 1 && v.is_finite() && v > 0.0).then_some(v)
             })
             .collect();
         let noisiest = per_pass.iter().flatten().fold(0.0f64, |a, &b| a.max(b));
-        // Weights relative to the noisiest pilot's (so a pilot that measured no variance,
-        // a black image, weighs 1e9 of it and none overflows).
+        // Weights relative to the noisiest pilot's (so a pilot that measured almost no
+        // variance weighs at most 1e9 of it and none overflows); all alike when none
+        // measured any.
         let weight: Vec<f64> = parts
             .iter()
             .zip(&per_pass)
-            .map(|(m, v)| {
-                let v = v.unwrap_or(noisiest);
-                if noisiest > 0.0 {
-                    m.n as f64 * noisiest / v.max(1e-9 * noisiest)
-                } else {
-                    m.n as f64
-                }
+            .map(|(m, v)| match (v, noisiest > 0.0) {
+                (Some(v), true) => m.n as f64 * noisiest / v.max(1e-9 * noisiest),
+                _ => m.n as f64,
             })
             .collect();
         let total: f64 = weight.iter().sum();
         let mut mean = vec![[0.0; 3]; npix];
         let mut var_of_mean = vec![[0.0; 3]; npix];
-        for (m, a) in parts.iter().zip(&weight) {
+        for ((m, a), v) in parts.iter().zip(&weight).zip(&per_pass) {
             let (a, n) = (a / total, m.n as f64);
             for i in 0..npix {
                 for c in 0..3 {
+                    let var = match v {
+                        Some(_) => m.var(i, c),
+                        None => noisiest,
+                    };
                     mean[i][c] += a * m.mean(i, c);
-                    var_of_mean[i][c] += a * a * m.var(i, c) / n;
+                    var_of_mean[i][c] += a * a * var / n;
                 }
             }
         }

@@ -82,8 +82,9 @@ impl Accel {
             Backend::Embree => EmbreeBvh::build(triangles)
                 .map(Accel::Embree)
                 .map_err(|e| format!("--accel embree: {e} (Debian: apt install libembree3-3)")),
-            Backend::Auto => match embree::available() {
-                Ok(()) => EmbreeBvh::build(triangles).map(Accel::Embree),
+            // Embree absent, or present but failing (an unsupported CPU): the CWBVH.
+            Backend::Auto => match embree::available().and_then(|()| EmbreeBvh::build(triangles)) {
+                Ok(b) => Ok(Accel::Embree(b)),
                 Err(_) => Ok(Accel::Cwbvh(Bvh::build(triangles))),
             },
         }

@@ -62,6 +62,14 @@ struct IntersectContext {
     inst_id: [u32; 1],
 }
 
+// The sizes of Embree 3.13's released configuration (`rtcore_config.h`:
+// `RTC_MAX_INSTANCE_LEVEL_COUNT` 1, `RTC_MIN_WIDTH` 0); a library built otherwise has a larger
+// context, and is not supported.
+const _: () = assert!(std::mem::size_of::<Ray>() == 48 && std::mem::align_of::<Ray>() == 16);
+const _: () = assert!(std::mem::size_of::<Hit>() == 32 && std::mem::align_of::<Hit>() == 16);
+const _: () = assert!(std::mem::size_of::<RayHit>() == 80);
+const _: () = assert!(std::mem::size_of::<IntersectContext>() == 24);
+
 const INVALID_ID: u32 = u32::MAX;
 const BUFFER_TYPE_INDEX: u32 = 0;
 const BUFFER_TYPE_VERTEX: u32 = 1;
@@ -183,25 +191,32 @@ impl EmbreeBvh {
         unsafe {
             let device = (api.new_device)(config.as_ptr());
             if device.is_null() {
-                return Err("Embree: rtcNewDevice failed".into());
+                // The reason of a device that was not made is the null device's error.
+                let code = (api.get_device_error)(std::ptr::null_mut());
+                return Err(format!("Embree: rtcNewDevice failed (RTCError {code})"));
             }
-            let bvh = EmbreeBvh {
-                api,
-                device,
-                scene: (api.new_scene)(device),
-            };
+            let scene = (api.new_scene)(device);
+            if scene.is_null() {
+                let code = (api.get_device_error)(device);
+                (api.release_device)(device);
+                return Err(format!("Embree: rtcNewScene failed (RTCError {code})"));
+            }
+            let bvh = EmbreeBvh { api, device, scene };
             (api.set_scene_build_quality)(bvh.scene, BUILD_QUALITY_HIGH);
             (api.set_scene_flags)(bvh.scene, SCENE_FLAG_ROBUST);
             let geometry = (api.new_geometry)(device, GEOMETRY_TYPE_TRIANGLE);
+            if geometry.is_null() {
+                return Err(bvh.error("rtcNewGeometry"));
+            }
             let n = triangles.len();
-            // Embree reads 16 bytes at the last vertex: one float of padding.
+            // (Embree pads a buffer it allocates for its 16-byte loads itself.)
             let vertices = (api.set_new_geometry_buffer)(
                 geometry,
                 BUFFER_TYPE_VERTEX,
                 0,
                 FORMAT_FLOAT3,
                 12,
-                3 * n + 1,
+                3 * n,
             ) as *mut [f32; 3];
             let indices =
                 (api.set_new_geometry_buffer)(geometry, BUFFER_TYPE_INDEX, 0, FORMAT_UINT3, 12, n)
@@ -217,14 +232,14 @@ impl EmbreeBvh {
                 let v = 3 * i as u32;
                 indices.add(i).write([v, v + 1, v + 2]);
             }
-            vertices.add(3 * n).write([0.0; 3]);
             (api.commit_geometry)(geometry);
             (api.attach_geometry)(bvh.scene, geometry);
             (api.release_geometry)(geometry);
             (api.commit_scene)(bvh.scene);
+            // Reading the error clears it: the code read is the one reported.
             match (api.get_device_error)(device) {
                 0 => Ok(bvh),
-                _ => Err(bvh.error("rtcCommitScene")),
+                code => Err(format!("Embree: rtcCommitScene failed (RTCError {code})")),
             }
         }
     }
@@ -243,14 +258,15 @@ impl EmbreeBvh {
         }
     }
 
+    /// The segment `0 < t < t_max` as Embree's closed `[tnear, tfar]`: the smallest positive
+    /// float and the float below `t_max`.
     fn ray(origin: Vec3, dir: Vec3, t_max: f32) -> Ray {
         Ray {
             org: origin.to_array(),
-            // Hits at `t > 0` only (the smallest positive float: Embree's segment is closed).
             tnear: f32::MIN_POSITIVE,
             dir: dir.to_array(),
             time: 0.0,
-            tfar: t_max,
+            tfar: t_max.next_down(),
             mask: u32::MAX,
             id: 0,
             flags: 0,
@@ -275,8 +291,7 @@ impl EmbreeBvh {
         // SAFETY: a committed scene, a context and a ray-hit of Embree's layouts.
         unsafe { (self.api.intersect1)(self.scene, &mut context, &mut rayhit) };
         let (ray, hit) = (rayhit.ray, rayhit.hit);
-        // Embree's segment is closed at `tfar`: a hit exactly at `t_max` is not one.
-        (hit.geom_id != INVALID_ID && ray.tfar < t_max).then_some(BvhHit {
+        (hit.geom_id != INVALID_ID).then_some(BvhHit {
             triangle: hit.prim_id,
             t: ray.tfar,
             b1: hit.u,
@@ -292,6 +307,6 @@ impl EmbreeBvh {
         // SAFETY: as in `intersect`.
         unsafe { (self.api.occluded1)(self.scene, &mut context, &mut ray) };
         // Embree sets `tfar` to -inf when the ray is blocked.
-        ray.tfar >= 0.0
+        ray.tfar != f32::NEG_INFINITY
     }
 }
