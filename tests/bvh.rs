@@ -25,13 +25,10 @@ fn backends(test: &str) -> Vec<Backend> {
 
 #[test]
 fn bvh_matches_brute_force_on_every_scene() {
+    let backends = backends("bvh_matches_brute_force_on_every_scene");
     for (name, backend) in ["cornell", "door", "desk", "furnace"]
         .into_iter()
-        .flat_map(|n| {
-            backends("bvh_matches_brute_force_on_every_scene")
-                .into_iter()
-                .map(move |b| (n, b))
-        })
+        .flat_map(|n| backends.iter().map(move |&b| (n, b)))
     {
         let scene = load_scene(&scene_path(name)).unwrap();
         let accel = Accel::build_with(&scene.triangles, backend).unwrap();

@@ -587,11 +587,17 @@ impl Metric {
     /// The weights from `reference`, the image divided by `scale`: `R` read over a window
     /// widened where the pilots' mean is noisy ([`crate::window`]).
     fn with_scale(width: u32, reference: &Pooled, scale: f64) -> Self {
+        Self::with_noise(width, &reference.mean, &reference.var_of_mean, scale)
+    }
+
+    /// As [`Metric::with_scale`], the window sized by `var_of_mean` (another estimate's
+    /// noise than `mean`'s, [`fold_metrics`]).
+    fn with_noise(width: u32, mean: &[[f64; 3]], var_of_mean: &[[f64; 3]], scale: f64) -> Self {
         let means = crate::window::window_means(
             width as usize,
-            reference.mean.len(),
-            &|i, c| reference.mean[i][c],
-            &|i, c| reference.var_of_mean[i][c],
+            mean.len(),
+            &|i, c| mean[i][c],
+            &|i, c| var_of_mean[i][c],
             0.1 * scale,
         );
         let weight = means
@@ -644,11 +650,7 @@ fn fold_metrics(width: u32, base: &[&Moments], pilot: &Pilot, scale: f64) -> [Me
         }
         let mut parts = base.to_vec();
         parts.push(&own);
-        let r = Pooled {
-            var_of_mean: noise.clone(),
-            ..Pooled::new(&parts)
-        };
-        Metric::with_scale(width, &r, scale)
+        Metric::with_noise(width, &Pooled::new(&parts).mean, &noise, scale)
     })
 }
 

@@ -26,18 +26,13 @@ pub enum Backend {
 }
 
 impl Backend {
+    /// The name `--accel` and `FOOTPRINT_ACCEL` take (clap's, from the variant).
     pub fn name(self) -> &'static str {
         match self {
             Backend::Auto => "auto",
             Backend::Embree => "embree",
             Backend::Cwbvh => "cwbvh",
         }
-    }
-
-    fn parse(s: &str) -> Option<Backend> {
-        [Backend::Auto, Backend::Embree, Backend::Cwbvh]
-            .into_iter()
-            .find(|b| b.name() == s)
     }
 }
 
@@ -54,11 +49,11 @@ pub fn set_backend(backend: Backend) {
 pub fn backend() -> Result<Backend, String> {
     match BACKEND.load(Ordering::Relaxed) {
         0 => match std::env::var("FOOTPRINT_ACCEL") {
-            Ok(s) => Backend::parse(&s)
-                .ok_or_else(|| format!("FOOTPRINT_ACCEL={s}: expected one of auto, embree, cwbvh")),
+            Ok(s) => clap::ValueEnum::from_str(&s, false)
+                .map_err(|_| format!("FOOTPRINT_ACCEL={s}: expected one of auto, embree, cwbvh")),
             Err(_) => Ok(Backend::Auto),
         },
-        b => Ok([Backend::Auto, Backend::Embree, Backend::Cwbvh][(b - 1) as usize]),
+        b => Ok(<Backend as clap::ValueEnum>::value_variants()[(b - 1) as usize]),
     }
 }
 
@@ -81,7 +76,7 @@ impl Accel {
             Backend::Cwbvh => Ok(Accel::Cwbvh(Bvh::build(triangles))),
             Backend::Embree => EmbreeBvh::build(triangles)
                 .map(Accel::Embree)
-                .map_err(|e| format!("--accel embree: {e} (Debian: apt install libembree3-3)")),
+                .map_err(|e| format!("Embree asked for: {e} (Debian: apt install libembree3-3)")),
             // Embree absent, or present but failing (an unsupported CPU): the CWBVH.
             Backend::Auto => match embree::available().and_then(|()| EmbreeBvh::build(triangles)) {
                 Ok(b) => Ok(Accel::Embree(b)),
@@ -113,6 +108,23 @@ impl Accel {
         match self {
             Accel::Embree(b) => b.unoccluded(origin, dir, t_max),
             Accel::Cwbvh(b) => b.unoccluded(origin, dir, t_max),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::ValueEnum;
+
+    /// `name` is the name clap parses, and `set_backend` stores the index `backend` reads.
+    #[test]
+    fn names_and_indices_agree_with_clap() {
+        for &b in Backend::value_variants() {
+            let clap_name = b.to_possible_value().expect("a value");
+            assert_eq!(clap_name.get_name(), b.name());
+            assert_eq!(Backend::from_str(b.name(), false), Ok(b));
+            assert_eq!(Backend::value_variants()[b as usize], b);
         }
     }
 }
