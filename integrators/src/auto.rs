@@ -47,12 +47,19 @@
 //!   When a method that reads the photon map wins, its sparse photon map grows with the time
 //!   left, as a fixed method's grows with its budget
 //!   ([`crate::render::chosen_guidance`]).
+//! * **Guided splitting.** A guided path or light tracer splits where its guide expects
+//!   more light; the combined image does not, so its layers measure both directions
+//!   unsplit. Each splitting direction is also piloted with a few passes of its own, as it
+//!   renders ([`SplitPilot`], [`SPLIT_PILOT_SHARE`]): its predicted noise is the layer's
+//!   times the ratio of the two under the same weights ([`split_ratio`]), its time its own
+//!   passes'. On door this is the difference: light tracing gains 1.7x from splitting, path
+//!   tracing nothing, and the unsplit layers predicted a near tie (3.5x apart rendered).
 //! * **Margins.** A guided candidate must be predicted [`GUIDED_MARGIN`] times better than
 //!   BSDF sampling of its own integrator: the pilot's passes are independent samples, and
 //!   what the render's Sobol sequence gains over thousands of passes it cannot measure (it
 //!   gains BSDF sampling more; see the constant). A guided combined image must be predicted
-//!   [`SPLIT_MARGIN`] times better than its guide's path and light tracers: they split, it
-//!   does not, and the pilot measures all three unsplit.
+//!   [`SPLIT_MARGIN`] times better than its guide's path and light tracers (measured: its
+//!   prediction runs low against theirs).
 //! * **Budget.** With `--time T` the pilot takes about [`PILOT_SHARE`] of `T` (at least
 //!   [`MIN_BATCHES`] passes) and counts in the budget: the render stops at `T`, pilot
 //!   included. With `--spp N` the pilot's [`MIN_BATCHES`] passes are extra, the candidates
@@ -105,15 +112,21 @@ pub const GUIDED_MIN_PASS_VARIANCE: f64 = 10.0;
 /// either direction chose `pt-bsdf` there (6x behind).
 pub const GUIDED_MARGIN: f64 = 1.3;
 /// A guided combined image is chosen only when predicted better than the better of its own
-/// guide's path and light tracer by this factor (else the next candidate is). The pilot
-/// measures all three unsplit, from the combined image's layers; but a guided path or light
-/// tracer splits where its guide expects more light (guided splitting), the combined image
-/// does not, and what splitting gains the pilot cannot see. Measured: door 16 s, seed 2,
+/// guide's path and light tracer by this factor (else the next candidate is). Set when the
+/// pilot measured all three unsplit, from the combined image's layers (door 16 s, seed 2:
 /// `combined-footprint` predicted 0.730 and `lt-footprint` 0.736, rendered 0.67-1.31
-/// against 0.30-0.35; Veach Ajar 30 s, seeds 1 and 3, `combined-footprint` predicted at
-/// most 1.1x the error of `pt-footprint`, rendered 0.0122 and 0.0123 against 0.0086 and
-/// 0.0115.
+/// against 0.30-0.35); kept now that the splitting directions are piloted as they render
+/// ([`SplitPilot`]): on Veach Ajar (30 s) the combined image is still predicted about as
+/// good as `pt-footprint` (seeds 1-3 of the thirteenth session: 0.97x, 1.04x and 1.29x
+/// its prediction) where 30-s renders of the two measure 1.05-1.4x apart in
+/// `pt-footprint`'s favour on most seeds; a `compare` run of seed 2 chose the combined
+/// image even so, at 1.24x `pt-footprint`'s error.
 pub const SPLIT_MARGIN: f64 = 1.3;
+/// A guided path or light tracer that splits is piloted with passes of its own
+/// ([`SplitPilot`]) for this share of its guide's combined pilot's time each, and at least
+/// [`MIN_SPLIT_PASSES`] of them.
+pub const SPLIT_PILOT_SHARE: f64 = 0.5;
+pub const MIN_SPLIT_PASSES: usize = 3;
 /// Fewest and most pilot passes per set of candidates.
 pub const MIN_BATCHES: usize = 4;
 pub const MAX_BATCHES: usize = 48;
@@ -461,6 +474,62 @@ fn pass_seconds(
         .fold(f64::INFINITY, f64::min)
 }
 
+/// A guided path or light tracer piloted with passes of its own, split where its guide
+/// expects more light as it renders (guided splitting): the combined image does not split,
+/// so its pt and lt layers measure these directions unsplit, and on door light tracing
+/// gains 1.7x from splitting that the layers cannot show (the eleventh and twelfth
+/// sessions' near ties of `lt-footprint` and `pt-footprint`, 3.5x apart when rendered).
+struct SplitPilot {
+    image: Moments,
+    /// The fastest pass's tracing time (other jobs on the machine only slow a pass down).
+    seconds: f64,
+}
+
+impl SplitPilot {
+    /// Runs passes of `method` until `until` (at least `min_passes`, at most
+    /// [`MAX_BATCHES`]), each with its own seed from `stream`.
+    fn run(
+        scene: &Scene,
+        opts: &RenderOptions,
+        method: Method,
+        g: &Guidance,
+        until: Option<Instant>,
+        min_passes: usize,
+        stream: u64,
+    ) -> Self {
+        let mut image = Moments::new(scene.camera.pixel_count());
+        let mut seconds = f64::INFINITY;
+        for b in 0..MAX_BATCHES {
+            if b >= min_passes && until.is_none_or(|u| Instant::now() >= u) {
+                break;
+            }
+            let r = independent_pass(scene, opts, method, g, stream ^ (b as u64 + 1), false);
+            image.add(&r.image);
+            seconds = seconds.min(r.timings.tracing.as_secs_f64());
+        }
+        SplitPilot { image, seconds }
+    }
+
+    /// The relative variance of one pass, each pixel weighed with the mean of `folds`'
+    /// weights (those the unsplit layer's folds are weighed with: the two are compared
+    /// under the same weights, see [`choose`]); `None` with fewer than two passes.
+    fn pass_variance(&self, folds: &[Metric; FOLDS]) -> Option<f64> {
+        let m = &self.image;
+        if m.n < 2 {
+            return None;
+        }
+        let mut var = 0.0f64;
+        for i in 0..m.sum.len() {
+            for c in 0..3 {
+                let w = folds.iter().map(|f| f.weight[i][c]).sum::<f64>() / FOLDS as f64;
+                var += m.var(i, c) * w;
+            }
+        }
+        let (scale, n) = (folds[0].scale, (3 * m.sum.len()).max(1) as f64);
+        Some(var / (scale * scale) / n)
+    }
+}
+
 /// What one pilot measured of the candidates of `guide` (the combined image, pt and lt: its
 /// three layers): the relative variance per pass and the missing light. `predicted` is set
 /// later, for every candidate at the same time left ([`Candidate::predict_at`]).
@@ -654,6 +723,22 @@ fn fold_metrics(width: u32, base: &[&Moments], pilot: &Pilot, scale: f64) -> [Me
     })
 }
 
+/// What guided splitting of at most `branches` branches does to a direction's per-pass
+/// noise: `split / unsplit`, the split pilot's relative variance over the unsplit layer's
+/// under the same weights (a ratio, so that what the weights' own noise adds to both
+/// cancels: measured alone, with `R` from the combined pilots, door's split `pt-footprint`
+/// passes read 600-800 against 200-270 unsplit where splitting changes nothing), clamped
+/// to `[1 / branches, 1]`: n branches at most divide a pass's variance by n (all of it
+/// arising after the split), and a pass of more branches is never noisier. 1 when the
+/// layer measured no variance.
+fn split_ratio(unsplit: f64, split: f64, branches: u32) -> f64 {
+    if unsplit > 0.0 && split.is_finite() {
+        (split / unsplit).clamp(1.0 / branches.max(1) as f64, 1.0)
+    } else {
+        1.0
+    }
+}
+
 /// The second-moment layers' estimate for the image layer `l` (combined, pt, lt).
 fn estimate_index(l: usize) -> usize {
     [moments::COMBINED, moments::PT, moments::LT][l]
@@ -753,7 +838,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     };
     // Every pilot is measured at the end, with the metric's weights read from the other
     // pilots' combined images (see below).
-    let mut pilots: Vec<(&str, Pilot, [f64; 3])> = Vec::new();
+    let mut pilots: Vec<(&str, Pilot, [f64; 3], [Option<SplitPilot>; 2])> = Vec::new();
     // The combined image timed on its own passes, as pt and lt are: the pilot's passes
     // also fill the second-moment layers.
     let t_c = pass_seconds(scene, opts, find("combined", "bsdf"), &unguided, 2);
@@ -870,11 +955,23 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         let until = budget.map(|t| Instant::now() + Duration::from_secs_f64(guided_pilot * t));
         let mut p = Pilot::new(scene.camera.pixel_count());
         pilot_passes(scene, opts, both, &gd, until, 2, &mut p);
-        // The guided pt and lt passes timed themselves (two each, the faster), as the
-        // unguided ones are: the guided combined pass's halves also carry its MIS densities.
-        // Timed without guided splitting: the pilot's combined image does not split, so its
-        // pt and lt layers measure the noise of unsplit paths, and noise and time must be
-        // of the same method (splitting is then a bonus the prediction does not count).
+        // The guided pt and lt split as they render (guided splitting), which the combined
+        // image's layers cannot show: each is piloted with passes of its own, their noise
+        // and time as rendered ([`SplitPilot`]).
+        let directions = ["pt", "lt"];
+        let split: [Option<SplitPilot>; 2] = std::array::from_fn(|d| {
+            let m = find(directions[d], gname);
+            (opts.guide_params.guided_split > 1 && wanted(&m.name())).then(|| {
+                let share = SPLIT_PILOT_SHARE * guided_pilot;
+                let until = budget.map(|t| Instant::now() + Duration::from_secs_f64(share * t));
+                let stream = 0xa071_0000_0000_0000 ^ ((d as u64) << 40);
+                SplitPilot::run(scene, opts, m, &gd, until, MIN_SPLIT_PASSES, stream)
+            })
+        });
+        // Without splitting (or not wanted), the guided pt and lt passes timed themselves
+        // (two each, the faster), as the unguided ones are, unsplit as the combined image's
+        // layers measure them (noise and time must be of the same method); the guided
+        // combined pass's halves also carry its MIS densities.
         let unsplit = RenderOptions {
             guide_params: footprint::settings::GuideParams {
                 guided_split: 1,
@@ -882,12 +979,15 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             },
             ..opts.clone()
         };
-        let t_pt_g = pass_seconds(scene, &unsplit, find("pt", gname), &gd, 2);
-        let t_lt_g = pass_seconds(scene, &unsplit, find("lt", gname), &gd, 2);
+        let time = |d: usize| match &split[d] {
+            Some(sp) => sp.seconds,
+            None => pass_seconds(scene, &unsplit, find(directions[d], gname), &gd, 2),
+        };
+        let (t_pt_g, t_lt_g) = (time(0), time(1));
         last_guided = Some(g0.elapsed().as_secs_f64());
         let t_c_g = pass_seconds(scene, &unsplit, both, &gd, 2);
         let secs = [t_c_g, t_pt_g, t_lt_g];
-        pilots.push((gname, p, secs));
+        pilots.push((gname, p, secs, split));
         built.push((gname.to_string(), gd));
     }
     // The pilot time of guides not piloted goes to those piloted: more passes, less noise
@@ -896,7 +996,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     let unpiloted = guided_count - pilots.len();
     if let (Some(t), true) = (budget, unpiloted > 0 && !pilots.is_empty()) {
         let each = guided_pilot * t * unpiloted as f64 / pilots.len() as f64;
-        for ((gname, p, _), (_, gd)) in pilots.iter_mut().zip(&built) {
+        for ((gname, p, _, _), (_, gd)) in pilots.iter_mut().zip(&built) {
             let until = Instant::now() + Duration::from_secs_f64(each);
             pilot_passes(scene, opts, find("combined", gname), gd, Some(until), 0, p);
         }
@@ -905,7 +1005,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     // unguided weights (--guided-mis off) or per-event guiding (no cache: its MIS
     // densities are the BSDF's) the layers read other densities.
     if !(opts.guide_params.guided_mis && opts.guide_params.cache) {
-        for (_, p, _) in &mut pilots {
+        for (_, p, _, _) in &mut pilots {
             p.m2 = std::array::from_fn(|_| Moments::new(0));
         }
     }
@@ -924,14 +1024,14 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         let guided = pilots.iter().enumerate().filter(|(j, _)| Some(*j) != skip);
         unguided
             .into_iter()
-            .chain(guided.map(|(_, (_, p, _))| &p.layers[0]))
+            .chain(guided.map(|(_, (_, p, _, _))| &p.layers[0]))
             .collect()
     };
     // One scale for every candidate: the image's mean luminance from every pilot pooled
     // (an image-wide mean, barely correlated with any pilot's per-pixel noise); only the
     // per-pixel weights leave a pilot's own image out.
     let mut all_pooled = reference.clone();
-    for (_, p, _) in &pilots {
+    for (_, p, _, _) in &pilots {
         all_pooled.pool(&p.layers[0]);
     }
     let scale = Metric::mean_luminance(&all_pooled);
@@ -946,7 +1046,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             scene, &pilot, &reference, &metric, &folds, true, secs, "bsdf",
         )
     };
-    for (j, (gname, p, secs)) in pilots.iter().enumerate() {
+    for (j, (gname, p, secs, split)) in pilots.iter().enumerate() {
         let rest = others(Some(j));
         let own = Metric::with_scale(scene.camera.width, &Pooled::new(&rest), scale);
         let folds = fold_metrics(scene.camera.width, &rest, p, scale);
@@ -963,6 +1063,24 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             if seen > c.unseen {
                 c.pass_variance += seen - c.unseen;
                 c.unseen = seen;
+            }
+        }
+        // A split direction's per-pass noise: its unsplit layer's as measured (cross-fitted,
+        // with what its paths missed), times the ratio of its own passes' noise to the
+        // layer's under the same weights ([`split_ratio`]); its time is theirs.
+        for (d, sp) in split.iter().enumerate() {
+            let name = format!("{}-{gname}", ["pt", "lt"][d]);
+            let Some(v) = sp.as_ref().and_then(|sp| sp.pass_variance(&folds)) else {
+                continue;
+            };
+            if let Some(c) = all.iter_mut().find(|c| c.method == name) {
+                let ratio = split_ratio(
+                    c.pass_variance - c.unseen,
+                    v,
+                    opts.guide_params.guided_split,
+                );
+                c.unseen *= ratio;
+                c.pass_variance *= ratio;
             }
         }
     }
@@ -1061,6 +1179,54 @@ mod tests {
             height: h as u32,
             pixels: (0..w * h).map(|i| Rgb::splat(value(i))).collect(),
         }
+    }
+
+    /// The splitting ratio is the measured one where it is possible (between `1 / n` and
+    /// 1), and clamped where noise put it outside: never below `1 / n`, never above 1.
+    #[test]
+    fn split_ratio_is_measured_within_what_n_branches_can_do() {
+        assert_eq!(split_ratio(100.0, 40.0, 4), 0.4);
+        assert_eq!(split_ratio(100.0, 10.0, 4), 0.25);
+        assert_eq!(split_ratio(100.0, 300.0, 4), 1.0);
+        assert_eq!(split_ratio(100.0, 40.0, 1), 1.0);
+        assert_eq!(split_ratio(0.0, 40.0, 4), 1.0);
+        assert_eq!(split_ratio(100.0, f64::NAN, 4), 1.0);
+    }
+
+    /// A split pilot's pass variance is the per-pixel variance weighed with the mean of the
+    /// folds' weights, over the scale squared: 400 passes of uniform noise of variance 4
+    /// (fixed seed) on 64 pixels, the folds' weights 1, 2, 3 and 6 (mean 3), scale 2, give
+    /// 4 * 3 / 4 = 3. The sample variance of 400 passes has a relative standard error of
+    /// `sqrt((kurtosis - 1) / n)` = `sqrt(0.8 / 400)` = 4.5% per pixel, 0.56% over 64
+    /// pixels; 5% is 9 of those.
+    #[test]
+    fn split_pilot_weighs_its_noise_with_the_folds_mean_weights() {
+        let (w, h) = (8usize, 8usize);
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(11);
+        let mut sp = SplitPilot {
+            image: Moments::new(w * h),
+            seconds: 0.1,
+        };
+        for _ in 0..400 {
+            let noise: Vec<f32> = (0..w * h)
+                .map(|_| {
+                    let u = (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+                    (5.0 + 2.0 * 3f64.sqrt() * (2.0 * u - 1.0)) as f32
+                })
+                .collect();
+            sp.image.add(&image(w, h, |i| noise[i]));
+        }
+        let folds: [Metric; FOLDS] = std::array::from_fn(|k| Metric {
+            scale: 2.0,
+            weight: vec![[[1.0, 2.0, 3.0, 6.0][k]; 3]; w * h],
+        });
+        let v = sp.pass_variance(&folds).expect("two passes or more");
+        assert!((v / 3.0 - 1.0).abs() < 0.05, "{v}");
+        let one = SplitPilot {
+            image: Moments::new(w * h),
+            seconds: 0.1,
+        };
+        assert!(one.pass_variance(&folds).is_none());
     }
 
     /// Two pilots of the same image (every pixel 1): 20 passes with per-pass noise of
