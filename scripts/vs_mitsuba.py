@@ -224,7 +224,9 @@ def cmd_bench(args):
         defines = {k: v for k, v in defines.items() if f"${k}" in text}
         times = {}
         for rep in range(args.repeat):
-            cmd = [FOOTPRINT, "render", xml, "--spp", str(args.spp), "--seed", "7", "-o",
+            # Russian roulette from Mitsuba's depth (5; footprint's own default is 8): equal
+            # work per sample, which is what this times.
+            cmd = [FOOTPRINT, "render", xml, "--spp", str(args.spp), "--seed", "7", "--rr-depth", "5", "-o",
                    os.path.join(tempfile.gettempdir(), "fp-bench.exr")]
             for k, v in defines.items():
                 cmd += ["-D", f"{k}={v}"]
@@ -296,19 +298,28 @@ def mitsuba_reference(mi, name, xml, defines, out, seconds):
     return ref
 
 
-def load_with_sampler(mi, xml, defines, sampler):
-    """The scene, with its `<sampler type=...>` replaced by `sampler` when one is given (the
-    edited XML goes to a temporary folder; the scene's own folder stays on the file resolver's
-    path, so its meshes and textures are found)."""
+def load_with_sampler(mi, xml, defines, sampler, rr_depth=None):
+    """The scene, with its `<sampler type=...>` replaced by `sampler` when one is given and
+    `rr_depth` given to its integrator when one is (the edited XML goes to a temporary folder;
+    the scene's own folder stays on the file resolver's path, so its meshes and textures are
+    found)."""
     import re
     import tempfile
     params = {k: str(v) for k, v in defines.items()}
-    if not sampler:
+    if not sampler and rr_depth is None:
         return mi.load_file(xml, **params)
-    text = open(xml).read()
-    edited, n = re.subn(r'<sampler\s+type="[^"]*"', f'<sampler type="{sampler}"', text)
-    if n != 1:
-        sys.exit(f"{xml}: expected one <sampler type=...>, found {n}")
+    edited = open(xml).read()
+    if sampler:
+        edited, n = re.subn(r'<sampler\s+type="[^"]*"', f'<sampler type="{sampler}"', edited)
+        if n != 1:
+            sys.exit(f"{xml}: expected one <sampler type=...>, found {n}")
+    if rr_depth is not None:
+        if "rr_depth" in edited:
+            sys.exit(f"{xml}: the integrator sets rr_depth already; --rr-depth would repeat it")
+        edited, n = re.subn(r'(<integrator\b[^>]*?)\s*/>', r'\1></integrator>', edited)
+        edited, n = re.subn(r'(<integrator\b[^>]*>)', rf'\1<integer name="rr_depth" value="{rr_depth}"/>', edited)
+        if n != 1:
+            sys.exit(f"{xml}: expected one <integrator ...>, found {n}")
     mi.file_resolver().append(os.path.dirname(os.path.abspath(xml)))
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "scene.xml")
@@ -335,7 +346,7 @@ def cmd_compare(args):
             continue
         print(f"{name}", flush=True)
         ref = mitsuba_reference(mi, name, xml, defines, out, args.reference_time)
-        scene = load_with_sampler(mi, xml, defines, args.mitsuba_sampler)
+        scene = load_with_sampler(mi, xml, defines, args.mitsuba_sampler, args.rr_depth)
         # Mitsuba renders a sample count, not a time: its count comes from two timings (4 and
         # 20 spp), so that the cost every render call has whatever its samples does not count
         # as samples (a 4-spp timing alone left Mitsuba 15% short of the budget at 64x64).
@@ -358,6 +369,7 @@ def cmd_compare(args):
             their_spp.append(spp)
             exr = os.path.join(out, "footprint.exr")
             seq = ["--sequence", args.sequence] if args.sequence else []
+            seq += ["--rr-depth", str(args.rr_depth)] if args.rr_depth is not None else []
             run = subprocess.run([FOOTPRINT, "render", xml, *dflags, "--integrator", args.integrator,
                                   "--guide", args.guide, "--time", str(args.time), "--seed", str(100 + s),
                                   *seq, "-o", exr], check=True, capture_output=True, text=True)
@@ -369,7 +381,8 @@ def cmd_compare(args):
         rows.append((name, float(np.median(ours)), int(np.median(our_spp)), float(np.median(theirs)),
                      int(np.median(their_spp)), float(np.median(their_secs))))
     print(f"\nequal time {args.time:g} s per render, {args.seeds} seeds, footprint {args.integrator}-{args.guide}"
-          f" ({args.sequence or 'default'} numbers), Mitsuba sampler {args.mitsuba_sampler or 'as the XML says'}; medians")
+          f" ({args.sequence or 'default'} numbers), Mitsuba sampler {args.mitsuba_sampler or 'as the XML says'}, "
+          f"Russian roulette from depth {args.rr_depth if args.rr_depth is not None else 'as each renderer defaults'}; medians")
     # Mitsuba's sample count comes from timings taken before its renders; where the machine's
     # speed drifts, its renders end short of (or past) the budget. Relative MSE falls as
     # 1/time, so MSE x seconds compares the two at exactly equal time: the last column.
@@ -409,6 +422,8 @@ def main():
     q.add_argument("--reference-time", type=float, default=600.0, help="seconds of a Mitsuba reference")
     q.add_argument("--sequence", choices=["sobol", "independent"], help="footprint's --sequence [default: its default]")
     q.add_argument("--mitsuba-sampler", help="replace the XML's sampler type for Mitsuba (e.g. multijitter, ldsampler)")
+    q.add_argument("--rr-depth", type=int, help="Russian roulette from this depth in both renderers [default: each "
+                   "its own: Mitsuba 5, footprint 8]")
     q.add_argument("-o", "--out")
     args = ap.parse_args()
     sys.exit({"references": cmd_references, "check": cmd_check, "bench": cmd_bench,

@@ -60,7 +60,7 @@ pub struct RenderSettings {
     /// Maximum number of path segments.
     pub max_depth: u32,
     /// Russian roulette applies after scattering at vertices of this depth or deeper
-    /// (Mitsuba's `rr_depth`).
+    /// (Mitsuba's `rr_depth`; 8 by default, where Mitsuba's is 5: README "Russian roulette").
     pub rr_depth: u32,
     pub seed: u64,
     /// Exposure of the PNG preview in stops (`--exposure` overrides it): a dim scene such as
@@ -76,7 +76,7 @@ impl Default for RenderSettings {
             spp: 16,
             time: None,
             max_depth: 8,
-            rr_depth: 5,
+            rr_depth: 8,
             seed: 0,
             exposure: 0.0,
         }

@@ -228,7 +228,7 @@ enum Command {
         max_depth: Option<u32>,
         /// Russian roulette after scattering at vertices of this depth or deeper (Mitsuba's
         /// rr_depth; guided vertices with --guided-rr on use their estimate at every depth)
-        /// [default: the scene's render.rr_depth, else 5]
+        /// [default: the scene's render.rr_depth, else 8]
         #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
         rr_depth: Option<u32>,
         /// Random seed; equal seeds give equal images whatever the thread count [default: the scene's render.seed, else 0]
