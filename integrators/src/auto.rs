@@ -89,8 +89,10 @@ pub const GUIDED_MAPS_SHARE: f64 = 0.15;
 /// ...or, for the first guide piloted (the paper's footprints), this share: where a scene is
 /// hard, guiding won by 3-10x, and door's footprint maps and pilot (3.4 s of 16 s on a slow
 /// day of the 2-core VM) no longer fitted 15%, which left `auto` with unguided light tracing
-/// there (4-4.6x behind `lt-footprint`).
-pub const FIRST_GUIDE_MAPS_SHARE: f64 = 0.25;
+/// there (4-4.6x behind `lt-footprint`). 0.25 until Russian roulette started at depth 8
+/// (thirteenth session): door's light paths grew longer (maps 1.6 → 2.6 s), its estimate
+/// came to 4.06 s of 16, and `auto` chose `pt-bsdf` at 4x `lt-footprint`'s error.
+pub const FIRST_GUIDE_MAPS_SHARE: f64 = 0.3;
 /// Guided candidates are piloted only where one pass of the unguided candidate the pilot
 /// predicts best has at least this relative variance (the metric's, averaged over pixels
 /// and channels: about the squared relative noise of one sample per pixel). Below it the
