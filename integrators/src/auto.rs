@@ -730,9 +730,11 @@ fn fold_metrics(width: u32, base: &[&Moments], pilot: &Pilot, scale: f64) -> [Me
 /// under the same weights (a ratio, so that what the weights' own noise adds to both
 /// cancels: measured alone, with `R` from the combined pilots, door's split `pt-footprint`
 /// passes read 600-800 against 200-270 unsplit where splitting changes nothing), clamped
-/// to `[1 / branches, 1]`: n branches at most divide a pass's variance by n (all of it
-/// arising after the split), and a pass of more branches is never noisier. 1 when the
-/// layer measured no variance.
+/// to `[1 / branches, 1]` against the noise of a few passes: a pass of more branches is
+/// never noisier, and one split into n branches divides a pass's variance by at most n
+/// (all of it arising after the split). Nested splits at later vertices could divide it
+/// by more; the bound then only makes the prediction cautious. 1 when the layer measured
+/// no variance.
 fn split_ratio(unsplit: f64, split: f64, branches: u32) -> f64 {
     if unsplit > 0.0 && split.is_finite() {
         (split / unsplit).clamp(1.0 / branches.max(1) as f64, 1.0)
