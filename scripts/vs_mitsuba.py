@@ -316,7 +316,7 @@ def load_with_sampler(mi, xml, defines, sampler, rr_depth=None):
     if rr_depth is not None:
         if "rr_depth" in edited:
             sys.exit(f"{xml}: the integrator sets rr_depth already; --rr-depth would repeat it")
-        edited, n = re.subn(r'(<integrator\b[^>]*?)\s*/>', r'\1></integrator>', edited)
+        edited = re.sub(r'(<integrator\b[^>]*?)\s*/>', r'\1></integrator>', edited)
         edited, n = re.subn(r'(<integrator\b[^>]*>)', rf'\1<integer name="rr_depth" value="{rr_depth}"/>', edited)
         if n != 1:
             sys.exit(f"{xml}: expected one <integrator ...>, found {n}")
@@ -368,11 +368,11 @@ def cmd_compare(args):
             theirs.append(rel_mse(img, ref))
             their_spp.append(spp)
             exr = os.path.join(out, "footprint.exr")
-            seq = ["--sequence", args.sequence] if args.sequence else []
-            seq += ["--rr-depth", str(args.rr_depth)] if args.rr_depth is not None else []
+            extra = ["--sequence", args.sequence] if args.sequence else []
+            extra += ["--rr-depth", str(args.rr_depth)] if args.rr_depth is not None else []
             run = subprocess.run([FOOTPRINT, "render", xml, *dflags, "--integrator", args.integrator,
                                   "--guide", args.guide, "--time", str(args.time), "--seed", str(100 + s),
-                                  *seq, "-o", exr], check=True, capture_output=True, text=True)
+                                  *extra, "-o", exr], check=True, capture_output=True, text=True)
             our_spp.append(int(run.stdout.split(" spp ")[0].split()[-1]))
             ours.append(rel_mse(np.array(mi.Bitmap(exr))[..., :3], ref))
             their_secs.append(their_s)

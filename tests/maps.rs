@@ -193,7 +193,7 @@ fn pass_settings(paths: usize, seed: u64) -> PassSettings {
     PassSettings {
         paths,
         max_depth: 16,
-        rr_depth: footprint_integrators::walk::RR_START_DEPTH,
+        rr_depth: footprint::settings::DEFAULT_RR_DEPTH,
         seed,
         soft_glossy_max: 100.0,
         specialise: true,

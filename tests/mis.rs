@@ -67,7 +67,7 @@ fn check_scene(name: &str, guided: bool, params: &GuideParams) -> Vec<[f32; 3]> 
     let pass = PassSettings {
         paths: 0,
         max_depth: 8,
-        rr_depth: footprint_integrators::walk::RR_START_DEPTH,
+        rr_depth: footprint::settings::DEFAULT_RR_DEPTH,
         seed: 3,
         soft_glossy_max: scene.maps.soft_glossy_max,
         specialise: true,

@@ -69,7 +69,7 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
         let s = PassSettings {
             paths,
             max_depth: door.settings.max_depth,
-            rr_depth: footprint_integrators::walk::RR_START_DEPTH,
+            rr_depth: footprint::settings::DEFAULT_RR_DEPTH,
             seed: 1,
             soft_glossy_max: door.maps.soft_glossy_max,
             specialise: true,
@@ -90,7 +90,7 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
     let s = PassSettings {
         paths: door.maps.photons,
         max_depth: door.settings.max_depth,
-        rr_depth: footprint_integrators::walk::RR_START_DEPTH,
+        rr_depth: footprint::settings::DEFAULT_RR_DEPTH,
         seed: 1,
         soft_glossy_max: door.maps.soft_glossy_max,
         specialise: true,
@@ -163,7 +163,7 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
         let pass = PassSettings {
             paths: 0,
             max_depth: door.settings.max_depth,
-            rr_depth: footprint_integrators::walk::RR_START_DEPTH,
+            rr_depth: footprint::settings::DEFAULT_RR_DEPTH,
             seed: 1,
             soft_glossy_max: door.maps.soft_glossy_max,
             specialise: true,

@@ -69,7 +69,7 @@ impl Default for RenderOptions {
             spp: 16,
             time: None,
             max_depth: 8,
-            rr_depth: crate::walk::RR_START_DEPTH,
+            rr_depth: footprint::settings::DEFAULT_RR_DEPTH,
             seed: 0,
             passes: PassSelection::ALL,
             specialise: true,

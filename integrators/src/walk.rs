@@ -18,7 +18,7 @@
 //!
 //! **Russian roulette, one rule** for every walk (read with the guide's estimate at guided
 //! vertices, below): after scattering at a vertex of depth
-//! `rr_depth` ([`RR_START_DEPTH`] by default) or more, the path continues with probability
+//! `rr_depth` ([`footprint::settings::DEFAULT_RR_DEPTH`] by default) or more, the path continues with probability
 //! `q = clamp(max_c β_c / max_c β_0, 0.05, 1)` (β the throughput after scattering, β_0 the
 //! throughput the walk started with) and its throughput is divided by `q`. β here is the
 //! throughput BSDF sampling would have given the same directions ([`DirectionSample::rr_weight`]):
@@ -56,15 +56,6 @@ use footprint::scene::features::Features;
 use footprint::scene::features::Specialisation;
 use footprint::scene::geometry::{SurfaceHit, spawn_origin};
 use glam::Vec3;
-
-/// Russian roulette applies after scattering at vertices of this depth or deeper, unless a
-/// walk says otherwise (`Start::rr_depth`, the render's `rr_depth`); guided vertices use
-/// guided Russian roulette at every depth when it is on. 8, where Mitsuba's `path` starts at
-/// 5: the throughput rule cuts the long paths that carry light into rooms lit indirectly,
-/// and starting later measured better at equal time on four of five scenes (Veach Ajar
-/// `pt-bsdf` 0.76x the error, door `lt-footprint` 0.75x, desk `lt-bsdf` 0.89x, Bitterli's box
-/// 0.96x; cornell, whose paths end at 8 segments, 1.05x; README "Russian roulette").
-pub const RR_START_DEPTH: u32 = 8;
 
 /// The rule: survival probability for throughput `beta` of a walk that started at `beta0`.
 #[inline]
@@ -413,12 +404,5 @@ mod tests {
             assert!(counts.iter().all(|&c| c == lo || c == hi), "{ratio}");
         }
         assert!((0..n).all(|i| split_count(40.0, 4, bits(i)) == 4));
-    }
-
-    /// A scene file without `rr_depth` gets the walk's default, as the command line does.
-    #[test]
-    fn scene_settings_default_to_the_walks_roulette_depth() {
-        let settings = footprint::settings::RenderSettings::default();
-        assert_eq!(settings.rr_depth, super::RR_START_DEPTH);
     }
 }

@@ -177,7 +177,7 @@ pub fn radiance_along(
 ) -> Rgb {
     let sampler = GuidedSampler::bsdf();
     let mut state = SamplerState::default();
-    let depths = (max_depth, crate::walk::RR_START_DEPTH);
+    let depths = (max_depth, footprint::settings::DEFAULT_RR_DEPTH);
     trace::<General, _>(scene, origin, dir, depths, &sampler, &mut state, rng, ()).pt
 }
 
