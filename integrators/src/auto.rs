@@ -129,8 +129,18 @@ pub const SPLIT_MARGIN: f64 = 1.3;
 /// [`MIN_SPLIT_PASSES`] of them.
 pub const SPLIT_PILOT_SHARE: f64 = 0.5;
 pub const MIN_SPLIT_PASSES: usize = 3;
-/// Fewest and most pilot passes per set of candidates.
+/// Fewest and most pilot passes per set of candidates (the unguided pilot's fewest with
+/// the second-moment layers; [`TIMED_PASSES`] more run before them).
 pub const MIN_BATCHES: usize = 4;
+/// The first passes of each combined pilot render without the second-moment layers, as the
+/// combined image renders, and time it (the fastest of them, [`pilot_passes`]): two passes
+/// that timed it apart were thrown away (door, 16 s: 0.5 s of a 6.5-s pilot). Their layers
+/// count as every pass's; at least [`MIN_BATCHES`] (unguided) or two (guided) passes with
+/// the second-moment layers follow. Two, as other jobs on the machine only slow a pass down;
+/// without them the second-moment layers predicted Veach Ajar's `pt-footprint` at 30 s as
+/// with every pass (seeds 2, 3: 1.08e-2 and 7.7e-3; with every pass 1.21e-2 and 8.9e-3;
+/// without one pass 1.12e-2 and 7.1e-3).
+pub const TIMED_PASSES: usize = 2;
 pub const MAX_BATCHES: usize = 48;
 /// A time budget shorter than this many passes of pt and lt together leaves no room for a
 /// pilot (its least cost is about 7 such pairs): the first unguided candidate renders.
@@ -388,8 +398,9 @@ fn can_miss_light(scene: &Scene, integrator: &str) -> Option<&'static str> {
 }
 
 /// The pilot's passes of the combined image of `guide` (`bsdf` or a guide with maps):
-/// moments of the combined, pt and lt layers and of the second-moment layers (the methods'
-/// pass times are measured apart, [`pass_seconds`]).
+/// moments of the combined, pt and lt layers and of the second-moment layers (pt's and lt's
+/// pass times are measured apart, [`pass_seconds`]; the combined image's by the pilot's
+/// first passes, [`TIMED_PASSES`]).
 struct Pilot {
     layers: [Moments; 3],
     /// Moments of each layer less the combined layer of the same pass: the noise of a
@@ -418,7 +429,12 @@ impl Pilot {
 }
 
 /// Runs pilot passes of `method` into `p` until `until` (at least `min_batches` in all, at
-/// most [`MAX_BATCHES`]); each pass has its own seed, the count so far continuing.
+/// most [`MAX_BATCHES`]); each pass has its own seed, the count so far continuing. The
+/// first `timed` passes render without the second-moment layers, as the method renders,
+/// and time themselves: the fastest one's tracing time is returned (infinite when none
+/// ran), so that the combined image is timed by pilot passes rather than by passes thrown
+/// away (their layers count as any pass's; the second-moment layers hold the other passes).
+#[allow(clippy::too_many_arguments)]
 fn pilot_passes(
     scene: &Scene,
     opts: &RenderOptions,
@@ -426,11 +442,18 @@ fn pilot_passes(
     g: &Guidance,
     until: Option<Instant>,
     min_batches: usize,
+    timed: usize,
     p: &mut Pilot,
-) {
-    for b in passes_until(p.passes(), min_batches, until) {
+) -> f64 {
+    let mut seconds = f64::INFINITY;
+    let first = p.passes();
+    for b in passes_until(first, min_batches, until) {
         let stream = 0xa070_0000_0000_0000 ^ (b as u64 + 1);
-        let r = independent_pass(scene, opts, method, g, stream, true);
+        let plain = b < first + timed;
+        let r = independent_pass(scene, opts, method, g, stream, !plain);
+        if plain {
+            seconds = seconds.min(r.timings.tracing.as_secs_f64());
+        }
         for (m, (_, img)) in p.layers.iter_mut().zip(&r.layers) {
             m.add(img);
         }
@@ -445,6 +468,7 @@ fn pilot_passes(
             m.add_difference(img, combined);
         }
     }
+    seconds
 }
 
 /// Pass numbers from `first` on, while fewer than `min` or `until` has not come (at most
@@ -812,14 +836,16 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     }
     // ---- Unguided pilot: the combined image's three layers ----
     let until = budget.map(|t| start + Duration::from_secs_f64(PILOT_SHARE * t));
+    // Its first passes time the combined image as it renders (the fastest of them).
     let mut pilot = Pilot::new(scene.camera.pixel_count());
-    pilot_passes(
+    let t_c = pilot_passes(
         scene,
         opts,
         find("combined", "bsdf"),
         &unguided,
         until,
-        MIN_BATCHES,
+        MIN_BATCHES + TIMED_PASSES,
+        TIMED_PASSES,
         &mut pilot,
     );
     let pilot = pilot;
@@ -843,9 +869,6 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     // Every pilot is measured at the end, with the metric's weights read from the other
     // pilots' combined images (see below).
     let mut pilots: Vec<(&str, Pilot, [f64; 3], [Option<SplitPilot>; 2])> = Vec::new();
-    // The combined image timed on its own passes, as pt and lt are: the pilot's passes
-    // also fill the second-moment layers.
-    let t_c = pass_seconds(scene, opts, find("combined", "bsdf"), &unguided, 2);
     let secs = [t_c, t_pt, t_lt];
     // Guided maps are piloted even when they do not fit when nothing else is wanted.
     let only_guided = spec.candidates.iter().all(|m| m.guide.uses_particles());
@@ -860,7 +883,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             scene, &pilot, &reference, &metric, &folds, true, secs, "bsdf",
         )
     };
-    let easy_scene = {
+    let best_unguided = {
         let time_left = horizon(start.elapsed().as_secs_f64());
         unguided_alone
             .iter()
@@ -871,7 +894,21 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
                 c
             })
             .min_by(|a, b| a.predicted.total_cmp(&b.predicted))
-            .filter(|c| c.pass_variance < GUIDED_MIN_PASS_VARIANCE)
+    };
+    let easy_scene = best_unguided
+        .clone()
+        .filter(|c| c.pass_variance < GUIDED_MIN_PASS_VARIANCE);
+    // A direction whose unguided layer misses more light (`b²`, which no time removes) than
+    // the best unguided candidate's whole predicted error cannot win guided either: a guide
+    // does not make the paths it cannot make (a light tracer still cannot see through glass),
+    // so its split pilot is not run (Veach Ajar's light tracer: 0.3 s of 30).
+    let misses_light = |direction: &str| {
+        let name = format!("{direction}-bsdf");
+        let layer = unguided_alone.iter().find(|c| c.method == name);
+        match (layer, &best_unguided) {
+            (Some(c), Some(best)) => c.missing > best.predicted,
+            _ => false,
+        }
     };
     let mut notes = Vec::new();
     // ---- Guided pilots, when their maps fit ----
@@ -944,6 +981,11 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             auto: None,
             ..opts.clone()
         };
+        // The view pass's relative importance target renders passes of its own, independent
+        // of the pilot's: made from the unguided pilot's image, the importance map followed
+        // the noise of the `R` that weighs the light tracer's pilot, and door's
+        // `lt-footprint` was predicted at 2-3x its error (seeds 1, 4, 5: 1.12, 0.92, 0.80
+        // against 0.40, 0.41, 0.40 with its own passes; rendered 0.30-0.47 either way).
         let gd = if share {
             let passes = shared.get_or_insert_with(|| {
                 let t = Instant::now();
@@ -956,27 +998,30 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         } else {
             guidance(scene, &o, &|| None)
         };
+        // Its first passes time the guided combined image as it renders (its halves also
+        // carry their MIS densities; it never splits).
         let until = budget.map(|t| Instant::now() + Duration::from_secs_f64(guided_pilot * t));
         let mut p = Pilot::new(scene.camera.pixel_count());
-        pilot_passes(scene, opts, both, &gd, until, 2, &mut p);
+        let min = TIMED_PASSES + 2;
+        let t_c_g = pilot_passes(scene, opts, both, &gd, until, min, TIMED_PASSES, &mut p);
         // The guided pt and lt split as they render (guided splitting), which the combined
         // image's layers cannot show: each is piloted with passes of its own, their noise
         // and time as rendered ([`SplitPilot`]).
         let directions = ["pt", "lt"];
         let split: [Option<SplitPilot>; 2] = std::array::from_fn(|d| {
             let m = find(directions[d], gname);
-            (opts.guide_params.guided_split > 1 && wanted(&m.name())).then(|| {
+            let wanted = wanted(&m.name()) && !misses_light(directions[d]);
+            (opts.guide_params.guided_split > 1 && wanted).then(|| {
                 let share = SPLIT_PILOT_SHARE * guided_pilot;
                 let until = budget.map(|t| Instant::now() + Duration::from_secs_f64(share * t));
                 let stream = 0xa071_0000_0000_0000 ^ ((d as u64) << 40);
                 SplitPilot::run(scene, opts, m, &gd, until, MIN_SPLIT_PASSES, stream)
             })
         });
-        // Without splitting (`guided_split` 1) the guided pt and lt passes time themselves
-        // (two each, the faster), as the unguided ones do: unsplit, as the combined image's
-        // layers measure their noise. A direction not wanted is not timed (its candidate is
-        // dropped before any comparison). The guided combined pass is timed apart: its
-        // halves also carry its MIS densities (it never splits).
+        // Without splitting (`guided_split` 1), or for a direction that misses light, the
+        // guided pt and lt passes time themselves (two each, the faster), as the unguided ones
+        // do: unsplit, as the combined image's layers measure their noise. A direction not
+        // wanted is not timed (its candidate is dropped before any comparison).
         let time = |d: usize| {
             let m = find(directions[d], gname);
             match &split[d] {
@@ -986,8 +1031,17 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             }
         };
         let (t_pt_g, t_lt_g) = (time(0), time(1));
+        for d in 0..2 {
+            let m = find(directions[d], gname);
+            if split[d].is_none() && opts.guide_params.guided_split > 1 && wanted(&m.name()) {
+                notes.push(format!(
+                    "{} not piloted split: {}-bsdf misses more light than the best unguided candidate's predicted error",
+                    m.name(),
+                    directions[d]
+                ));
+            }
+        }
         last_guided = Some(g0.elapsed().as_secs_f64());
-        let t_c_g = pass_seconds(scene, opts, both, &gd, 2);
         let secs = [t_c_g, t_pt_g, t_lt_g];
         pilots.push((gname, p, secs, split));
         built.push((gname.to_string(), gd));
@@ -1000,7 +1054,8 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         let each = guided_pilot * t * unpiloted as f64 / pilots.len() as f64;
         for ((gname, p, _, _), (_, gd)) in pilots.iter_mut().zip(&built) {
             let until = Instant::now() + Duration::from_secs_f64(each);
-            pilot_passes(scene, opts, find("combined", gname), gd, Some(until), 0, p);
+            let combined = find("combined", gname);
+            pilot_passes(scene, opts, combined, gd, Some(until), 0, 0, p);
         }
     }
     // The MIS estimates need the densities the guided paths were drawn with: with
