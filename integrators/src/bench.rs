@@ -13,6 +13,9 @@ use footprint_integrators::maps::Guidance;
 use footprint_integrators::passes::{PassSettings, light_pass, view_pass};
 use footprint_integrators::{Method, RenderOptions, render};
 use glam::Vec2;
+
+/// Paired runs (general, then specialised) of each path-loop measurement.
+const LOOP_ROUNDS: usize = 5;
 use rayon::prelude::*;
 use std::path::Path;
 use std::time::Instant;
@@ -266,23 +269,32 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
         for m in ["pt-bsdf", "lt-bsdf"] {
             let mut opts = RenderOptions::from_scene(sc).map_err(anyhow::Error::msg)?;
             opts.method = Method::parse(m).map_err(anyhow::Error::msg)?;
-            opts.time = Some(seconds / 2.0);
-            // Alternating runs, the best of two each: other jobs on the machine slow both.
+            opts.time = Some(seconds / LOOP_ROUNDS as f64);
+            // Alternating runs, each round a general and a specialised one back to back: the
+            // ratio of each pair, and their median and range (the VM's speed drifts by 10%
+            // between runs seconds apart, which a ratio of separate bests does not cancel).
             let mut best = [0.0f64; 2];
-            for _ in 0..2 {
+            let mut ratios = Vec::with_capacity(LOOP_ROUNDS);
+            for _ in 0..LOOP_ROUNDS {
+                let mut rate = [0.0f64; 2];
                 for (k, specialise) in [false, true].into_iter().enumerate() {
                     opts.specialise = specialise;
                     let r = render(sc, &opts, |_| {});
-                    best[k] = best[k].max(r.paths as f64 / r.timings.tracing.as_secs_f64());
+                    rate[k] = r.paths as f64 / r.timings.tracing.as_secs_f64();
+                    best[k] = best[k].max(rate[k]);
                 }
+                ratios.push(rate[1] / rate[0]);
             }
+            ratios.sort_by(f64::total_cmp);
             println!(
-                "{}: {m} path loop, general {:.3} M paths/s, specialised ({}) {:.3} M paths/s: ratio {:.3}",
+                "{}: {m} path loop, general {:.3} M paths/s, specialised ({}) {:.3} M paths/s (the best of {LOOP_ROUNDS}): ratio {:.3}, median of {LOOP_ROUNDS} paired runs (range {:.3}-{:.3})",
                 path.display(),
                 best[0] / 1e6,
                 opts.specialisation(sc).name(),
                 best[1] / 1e6,
-                best[1] / best[0]
+                ratios[LOOP_ROUNDS / 2],
+                ratios[0],
+                ratios[LOOP_ROUNDS - 1]
             );
         }
     }
