@@ -61,8 +61,9 @@
 //!   [`SPLIT_MARGIN`] times better than its guide's path and light tracers (measured: its
 //!   prediction runs low against theirs).
 //! * **Budget.** With `--time T` the pilot takes about [`PILOT_SHARE`] of `T` (at least
-//!   [`MIN_BATCHES`] passes) and counts in the budget: the render stops at `T`, pilot
-//!   included. With `--spp N` the pilot's [`MIN_BATCHES`] passes are extra, the candidates
+//!   [`MIN_BATCHES`] + [`TIMED_PASSES`] passes) and counts in the budget: the render stops
+//!   at `T`, pilot included. With `--spp N` the pilot's passes (the unguided pilot's
+//!   [`MIN_BATCHES`] + [`TIMED_PASSES`], and the guided pilots') are extra, the candidates
 //!   are compared at the time `N` passes of path tracing take, and the chosen method renders
 //!   `N` passes.
 
@@ -78,6 +79,7 @@ use footprint::Rgb;
 use footprint::film::Image;
 use footprint::math::luminance;
 use footprint::scene::Scene;
+use footprint::settings::GuideParams;
 use std::time::{Duration, Instant};
 
 /// Share of a time budget the unguided pilot takes.
@@ -136,10 +138,12 @@ pub const MIN_BATCHES: usize = 4;
 /// combined image renders, and time it (the fastest of them, [`pilot_passes`]): two passes
 /// that timed it apart were thrown away (door, 16 s: 0.5 s of a 6.5-s pilot). Their layers
 /// count as every pass's; at least [`MIN_BATCHES`] (unguided) or two (guided) passes with
-/// the second-moment layers follow. Two, as other jobs on the machine only slow a pass down;
-/// without them the second-moment layers predicted Veach Ajar's `pt-footprint` at 30 s as
-/// with every pass (seeds 2, 3: 1.08e-2 and 7.7e-3; with every pass 1.21e-2 and 8.9e-3;
-/// without one pass 1.12e-2 and 7.1e-3).
+/// the second-moment layers follow, and what a candidate's own paths missed is measured on
+/// those (both second-moment layers from the same passes). Two, as other jobs on the
+/// machine only slow a pass down. Veach Ajar at 30 s, seeds 2 and 3, predicted
+/// `pt-footprint` 1.08e-2 and 7.7e-3 so, 1.12e-2 and 7.1e-3 with one timed pass, 1.21e-2
+/// and 8.9e-3 with the timing passes apart (every pass in the second-moment layers): within
+/// what one seed's pilot varies from run to run (1.1-1.8e-2 on seed 2).
 pub const TIMED_PASSES: usize = 2;
 pub const MAX_BATCHES: usize = 48;
 /// A time budget shorter than this many passes of pt and lt together leaves no room for a
@@ -223,8 +227,13 @@ pub struct Candidate {
 }
 
 impl Candidate {
-    /// Sets `predicted` for `time_left` seconds of rendering.
+    /// Sets `predicted` for `time_left` seconds of rendering (infinite for a candidate that
+    /// was not timed).
     fn predict_at(&mut self, time_left: f64) {
+        if !self.pass_seconds.is_finite() {
+            self.predicted = f64::INFINITY;
+            return;
+        }
         let passes = (time_left / self.pass_seconds).max(1.0);
         self.predicted = self.pass_variance / passes + self.missing;
     }
@@ -447,6 +456,8 @@ fn pilot_passes(
 ) -> f64 {
     let mut seconds = f64::INFINITY;
     let first = p.passes();
+    // `min_batches` counts every pass of the pilot: timed passes come first.
+    debug_assert!(timed == 0 || first + timed <= min_batches);
     for b in passes_until(first, min_batches, until) {
         let stream = 0xa070_0000_0000_0000 ^ (b as u64 + 1);
         let plain = b < first + timed;
@@ -478,7 +489,7 @@ fn passes_until(first: usize, min: usize, until: Option<Instant>) -> impl Iterat
 }
 
 /// The time of one pass of `method` (its own path loop, no MIS bookkeeping): the fastest of
-/// three, since other jobs on the machine only ever slow a pass down.
+/// `repeat`, since other jobs on the machine only ever slow a pass down.
 fn pass_seconds(
     scene: &Scene,
     opts: &RenderOptions,
@@ -901,14 +912,23 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     // A direction whose unguided layer misses more light (`b²`, which no time removes) than
     // the best unguided candidate's whole predicted error cannot win guided either: a guide
     // does not make the paths it cannot make (a light tracer still cannot see through glass),
-    // so its split pilot is not run (Veach Ajar's light tracer: 0.3 s of 30).
+    // so its split pilot is not run (Veach Ajar's light tracer: 0.3 s of 30). The best
+    // unguided error is taken at the least time the guided pilots can leave (they are
+    // piloted within FIRST_GUIDE_MAPS_SHARE of the budget), where it is largest.
+    let least_left = horizon(start.elapsed().as_secs_f64() + FIRST_GUIDE_MAPS_SHARE * horizon(0.0));
+    let best_at_least = unguided_alone
+        .iter()
+        .filter(|c| wanted(&c.method))
+        .map(|c| {
+            let mut c = c.clone();
+            c.predict_at(least_left);
+            c.predicted
+        })
+        .fold(f64::INFINITY, f64::min);
     let misses_light = |direction: &str| {
         let name = format!("{direction}-bsdf");
         let layer = unguided_alone.iter().find(|c| c.method == name);
-        match (layer, &best_unguided) {
-            (Some(c), Some(best)) => c.missing > best.predicted,
-            _ => false,
-        }
+        layer.is_some_and(|c| c.missing > best_at_least)
     };
     let mut notes = Vec::new();
     // ---- Guided pilots, when their maps fit ----
@@ -1022,11 +1042,18 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         // guided pt and lt passes time themselves (two each, the faster), as the unguided ones
         // do: unsplit, as the combined image's layers measure their noise. A direction not
         // wanted is not timed (its candidate is dropped before any comparison).
+        let unsplit = RenderOptions {
+            guide_params: GuideParams {
+                guided_split: 1,
+                ..opts.guide_params.clone()
+            },
+            ..opts.clone()
+        };
         let time = |d: usize| {
             let m = find(directions[d], gname);
             match &split[d] {
                 Some(sp) => sp.seconds,
-                None if wanted(&m.name()) => pass_seconds(scene, opts, m, &gd, 2),
+                None if wanted(&m.name()) => pass_seconds(scene, &unsplit, m, &gd, 2),
                 None => f64::INFINITY,
             }
         };

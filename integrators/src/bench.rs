@@ -13,12 +13,13 @@ use footprint_integrators::maps::Guidance;
 use footprint_integrators::passes::{PassSettings, light_pass, view_pass};
 use footprint_integrators::{Method, RenderOptions, render};
 use glam::Vec2;
-
-/// Paired runs (general, then specialised) of each path-loop measurement.
-const LOOP_ROUNDS: usize = 5;
 use rayon::prelude::*;
 use std::path::Path;
 use std::time::Instant;
+
+/// Paired runs (a general and a specialised one, their order alternating) of each path-loop
+/// measurement.
+const LOOP_ROUNDS: usize = 5;
 
 /// Runs every measurement; `extra` is a scene (e.g. Veach Ajar) whose guided path
 /// throughput is measured next to door's.
@@ -270,15 +271,17 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
             let mut opts = RenderOptions::from_scene(sc).map_err(anyhow::Error::msg)?;
             opts.method = Method::parse(m).map_err(anyhow::Error::msg)?;
             opts.time = Some(seconds / LOOP_ROUNDS as f64);
-            // Alternating runs, each round a general and a specialised one back to back: the
+            // Paired runs, each round a general and a specialised one back to back: the
             // ratio of each pair, and their median and range (the VM's speed drifts by 10%
             // between runs seconds apart, which a ratio of separate bests does not cancel).
             let mut best = [0.0f64; 2];
             let mut ratios = Vec::with_capacity(LOOP_ROUNDS);
-            for _ in 0..LOOP_ROUNDS {
+            for round in 0..LOOP_ROUNDS {
                 let mut rate = [0.0f64; 2];
-                for (k, specialise) in [false, true].into_iter().enumerate() {
-                    opts.specialise = specialise;
+                // The order alternates, so that a drift within a pair cancels over the rounds.
+                let order = if round % 2 == 0 { [0, 1] } else { [1, 0] };
+                for k in order {
+                    opts.specialise = k == 1;
                     let r = render(sc, &opts, |_| {});
                     rate[k] = r.paths as f64 / r.timings.tracing.as_secs_f64();
                     best[k] = best[k].max(rate[k]);

@@ -284,7 +284,7 @@ mod tests {
     #[test]
     fn node_test_enters_the_children_obvhs_enters() {
         let mut rng = Rng::new(31, 0, 0);
-        let mut p = |rng: &mut Rng| Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
+        let p = |rng: &mut Rng| Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
         let tris: Vec<TriangleGeom> = (0..2000)
             .map(|_| {
                 let c = p(&mut rng) * 10.0;
