@@ -894,8 +894,8 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             scene, &pilot, &reference, &metric, &folds, true, secs, "bsdf",
         )
     };
-    let best_unguided = {
-        let time_left = horizon(start.elapsed().as_secs_f64());
+    // The wanted unguided candidate predicted best with `time_left` seconds left.
+    let best_unguided = |time_left: f64| {
         unguided_alone
             .iter()
             .filter(|c| wanted(&c.method))
@@ -906,8 +906,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             })
             .min_by(|a, b| a.predicted.total_cmp(&b.predicted))
     };
-    let easy_scene = best_unguided
-        .clone()
+    let easy_scene = best_unguided(horizon(start.elapsed().as_secs_f64()))
         .filter(|c| c.pass_variance < GUIDED_MIN_PASS_VARIANCE);
     // A direction whose unguided layer misses more light (`b²`, which no time removes) than
     // the best unguided candidate's whole predicted error cannot win guided either: a guide
@@ -916,15 +915,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     // unguided error is taken at the least time the guided pilots can leave (they are
     // piloted within FIRST_GUIDE_MAPS_SHARE of the budget), where it is largest.
     let least_left = horizon(start.elapsed().as_secs_f64() + FIRST_GUIDE_MAPS_SHARE * horizon(0.0));
-    let best_at_least = unguided_alone
-        .iter()
-        .filter(|c| wanted(&c.method))
-        .map(|c| {
-            let mut c = c.clone();
-            c.predict_at(least_left);
-            c.predicted
-        })
-        .fold(f64::INFINITY, f64::min);
+    let best_at_least = best_unguided(least_left).map_or(f64::INFINITY, |c| c.predicted);
     let misses_light = |direction: &str| {
         let name = format!("{direction}-bsdf");
         let layer = unguided_alone.iter().find(|c| c.method == name);
@@ -1028,10 +1019,20 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         // image's layers cannot show: each is piloted with passes of its own, their noise
         // and time as rendered ([`SplitPilot`]).
         let directions = ["pt", "lt"];
+        let splits = opts.guide_params.guided_split > 1;
+        for d in directions {
+            let m = find(d, gname);
+            if splits && wanted(&m.name()) && misses_light(d) {
+                notes.push(format!(
+                    "{} not piloted split: {d}-bsdf misses more light than the best unguided candidate's predicted error",
+                    m.name()
+                ));
+            }
+        }
         let split: [Option<SplitPilot>; 2] = std::array::from_fn(|d| {
             let m = find(directions[d], gname);
             let wanted = wanted(&m.name()) && !misses_light(directions[d]);
-            (opts.guide_params.guided_split > 1 && wanted).then(|| {
+            (splits && wanted).then(|| {
                 let share = SPLIT_PILOT_SHARE * guided_pilot;
                 let until = budget.map(|t| Instant::now() + Duration::from_secs_f64(share * t));
                 let stream = 0xa071_0000_0000_0000 ^ ((d as u64) << 40);
@@ -1058,16 +1059,6 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             }
         };
         let (t_pt_g, t_lt_g) = (time(0), time(1));
-        for d in 0..2 {
-            let m = find(directions[d], gname);
-            if split[d].is_none() && opts.guide_params.guided_split > 1 && wanted(&m.name()) {
-                notes.push(format!(
-                    "{} not piloted split: {}-bsdf misses more light than the best unguided candidate's predicted error",
-                    m.name(),
-                    directions[d]
-                ));
-            }
-        }
         last_guided = Some(g0.elapsed().as_secs_f64());
         let secs = [t_c_g, t_pt_g, t_lt_g];
         pilots.push((gname, p, secs, split));
@@ -1267,6 +1258,30 @@ mod tests {
 
     /// The splitting ratio is the measured one where it is possible (between `1 / n` and
     /// 1), and clamped where noise put it outside: never below `1 / n`, never above 1.
+    /// A candidate that was not timed (its direction not wanted) is predicted infinite, not
+    /// at one pass's error, and so never ranks ahead of a timed one.
+    #[test]
+    fn a_candidate_not_timed_is_predicted_infinite() {
+        let mut timed = Candidate {
+            method: "pt-bsdf".into(),
+            predicted: 0.0,
+            pass_seconds: 0.01,
+            pass_variance: 100.0,
+            unseen: 0.0,
+            missing: 0.0,
+        };
+        let mut untimed = Candidate {
+            method: "lt-footprint".into(),
+            pass_seconds: f64::INFINITY,
+            pass_variance: 1e-6,
+            ..timed.clone()
+        };
+        timed.predict_at(10.0);
+        untimed.predict_at(10.0);
+        assert!((timed.predicted - 0.1).abs() < 1e-12, "{}", timed.predicted);
+        assert!(untimed.predicted.is_infinite(), "{}", untimed.predicted);
+    }
+
     #[test]
     fn split_ratio_is_measured_within_what_n_branches_can_do() {
         assert_eq!(split_ratio(100.0, 40.0, 4), 0.4);
