@@ -14,6 +14,7 @@
 //! mapping.
 
 pub mod export;
+mod prefetch;
 mod shapes;
 mod xml;
 
@@ -80,6 +81,12 @@ const TEXTURES: &str = "bitmap, checkerboard";
 
 /// Loads a Mitsuba 3 XML scene.
 pub fn load(path: &Path, opts: &ImportOptions) -> Result<Scene> {
+    load_with(path, opts, true)
+}
+
+/// [`load`], with the files loaded ahead in parallel ([`prefetch`]) or each where the builder
+/// reaches it.
+fn load_with(path: &Path, opts: &ImportOptions, prefetch: bool) -> Result<Scene> {
     let text = std::fs::read_to_string(path).map_err(|reason| Error::Io {
         path: path.to_path_buf(),
         reason,
@@ -131,6 +138,9 @@ pub fn load(path: &Path, opts: &ImportOptions) -> Result<Scene> {
         doc.params.insert(k.clone(), v.clone());
     }
     let mut b = Builder::new(&doc)?;
+    if prefetch {
+        b.files = prefetch::Prefetched::load(&doc, root);
+    }
     for c in doc.children(root) {
         match c.tag_name().name() {
             "default" => {}
@@ -209,6 +219,8 @@ struct Builder<'a, 'd> {
     material_index: HashMap<(Option<NodeId>, [u32; 3]), u32>,
     /// BSDF elements being built (a reference cycle is an error, not a stack overflow).
     building: Vec<NodeId>,
+    /// The meshes and textures, loaded ahead in parallel.
+    files: prefetch::Prefetched,
 }
 
 impl<'a, 'd> Builder<'a, 'd> {
@@ -246,6 +258,7 @@ impl<'a, 'd> Builder<'a, 'd> {
             texture_of: HashMap::new(),
             material_index: HashMap::new(),
             building: Vec::new(),
+            files: Default::default(),
         })
     }
 
@@ -612,7 +625,7 @@ impl<'a, 'd> Builder<'a, 'd> {
                         "sRGB decoding",
                     )?;
                 }
-                Texture::load(&self.doc.file(&file))?
+                self.files.texture(&self.doc.file(&file))?
             }
             "checkerboard" => {
                 let c0 = p.rgb("color0")?.unwrap_or(Rgb::splat(0.4));
@@ -913,7 +926,7 @@ impl<'a, 'd> Builder<'a, 'd> {
                     .ok_or_else(|| self.doc.err(node, "obj needs 'filename'"))?;
                 face_normals = p.boolean("face_normals")?.unwrap_or(false);
                 let flip_tex = p.boolean("flip_tex_coords")?.unwrap_or(true);
-                let mut mesh = shapes::load_obj(&self.doc.file(&file))?;
+                let mut mesh = self.files.mesh(&self.doc.file(&file))?;
                 if !flip_tex {
                     // Mitsuba then reads v as stored: flip it into the OBJ convention.
                     for t in mesh.uvs.iter_mut().flatten() {
@@ -1207,4 +1220,51 @@ pub fn parse_define(s: &str) -> std::result::Result<(String, String), String> {
         ));
     }
     Ok((k.to_string(), v.to_string()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Loading the files ahead in parallel builds the same scene as loading each where the
+    /// builder reaches it: the same triangles, shading, materials and textures, on a scene
+    /// of OBJ meshes (desk's export) and one with a bitmap texture (features).
+    #[test]
+    fn files_loaded_ahead_build_the_same_scene() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+        for file in ["desk/mitsuba/scene.xml", "features/scene.xml"] {
+            let path = root.join(file);
+            let opts = ImportOptions::default();
+            let ahead = load_with(&path, &opts, true).unwrap();
+            let one_by_one = load_with(&path, &opts, false).unwrap();
+            assert!(!ahead.triangles.is_empty(), "{file}");
+            let same = |a: &dyn std::fmt::Debug, b: &dyn std::fmt::Debug| {
+                format!("{a:?}") == format!("{b:?}")
+            };
+            assert!(
+                same(&ahead.triangles, &one_by_one.triangles),
+                "{file}: triangles"
+            );
+            assert!(same(&ahead.shading, &one_by_one.shading), "{file}: shading");
+            assert!(
+                same(&ahead.materials, &one_by_one.materials),
+                "{file}: materials"
+            );
+            assert!(
+                same(&ahead.textures, &one_by_one.textures),
+                "{file}: textures"
+            );
+        }
+        assert!(
+            !load_with(
+                &root.join("features/scene.xml"),
+                &ImportOptions::default(),
+                true
+            )
+            .unwrap()
+            .textures
+            .is_empty(),
+            "features has a bitmap texture"
+        );
+    }
 }
