@@ -206,6 +206,21 @@ fn quads(triangles: &[TriangleGeom]) -> (Vec<[u32; 4]>, Vec<[Half; 2]>) {
             let kb: Vec<usize> = (0..3).filter(|&k| !in_a(b[k])).collect();
             (ka.len() == 1 && kb.len() == 1).then(|| (ka[0], kb[0], b))
         });
+        // The second half's corners 1 and 2 must be two distinct corners of the quad (a
+        // sliver whose corners fall within the tolerance of one another stays alone).
+        let pair = pair.filter(|&(k, m, b)| {
+            let q = (k + 2) % 3;
+            let pos = |c: usize| {
+                if c == m {
+                    0
+                } else if same(b[c], a[q]) {
+                    1
+                } else {
+                    2
+                }
+            };
+            pos(1) != pos(2)
+        });
         match pair {
             Some((k, m, b)) => {
                 // v0 = a[k], v1 = a[k + 1], v3 = a[k + 2]: the first half is triangle i,
@@ -257,7 +272,9 @@ fn quads(triangles: &[TriangleGeom]) -> (Vec<[u32; 4]>, Vec<[Half; 2]>) {
 /// second `(v2, v3, v1)`, whose own coordinates Embree reports as `1 - u`, `1 - v`.
 #[inline]
 fn on_triangle(halves: &[Half; 2], u: f32, v: f32) -> (u32, f32, f32) {
-    let (half, w) = if u + v <= 1.0 {
+    // An unpaired triangle has one half: a hit on it a rounding past its diagonal edge
+    // (`u + v` just above 1) stays on it. `!(.. > 1)` sends NaN there too.
+    let (half, w) = if !(u + v > 1.0) || halves[0].triangle == halves[1].triangle {
         (halves[0], [(1.0 - u - v).max(0.0), u, v])
     } else {
         (halves[1], [(u + v - 1.0).max(0.0), 1.0 - u, 1.0 - v])
@@ -514,6 +531,8 @@ mod tests {
         assert_eq!(index, vec![[0, 1, 2, 2], [3, 4, 5, 5], [6, 7, 8, 8]]);
         for (i, h) in halves.iter().enumerate() {
             assert_eq!(on_triangle(h, 0.25, 0.5), (i as u32, 0.25, 0.5));
+            // A hit a rounding past the diagonal edge stays where it is (no mirrored half).
+            assert_eq!(on_triangle(h, 0.6, 0.40001), (i as u32, 0.6, 0.40001));
         }
     }
 }

@@ -177,6 +177,8 @@ fn load_with(path: &Path, opts: &ImportOptions, prefetch: bool) -> Result<Scene>
             path.display()
         ));
     }
+    // Files loaded ahead that no element took (under an element the builder skipped).
+    drop(std::mem::take(&mut b.files));
     b.stats.triangles = b.triangles.len();
     let notes = doc.notes.take();
     let mut scene = Scene::new(

@@ -56,7 +56,7 @@ impl Prefetched {
             }
         }
         // Largest first, so that the big files do not start last.
-        jobs.sort_by_key(|(j, _)| {
+        jobs.sort_by_cached_key(|(j, _)| {
             std::cmp::Reverse(std::fs::metadata(j.path()).map_or(0, |m| m.len()))
         });
         let loaded: Vec<(Loaded, usize)> = jobs
