@@ -1020,19 +1020,23 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         // and time as rendered ([`SplitPilot`]).
         let directions = ["pt", "lt"];
         let splits = opts.guide_params.guided_split > 1;
-        for d in directions {
-            let m = find(d, gname);
-            if splits && wanted(&m.name()) && misses_light(d) {
+        // Per direction: its guided method is wanted, and its split pilot skipped.
+        let skip: [(bool, bool); 2] = std::array::from_fn(|d| {
+            let m = find(directions[d], gname);
+            let wanted = wanted(&m.name());
+            let skipped = splits && wanted && misses_light(directions[d]);
+            if skipped {
                 notes.push(format!(
-                    "{} not piloted split: {d}-bsdf misses more light than the best unguided candidate's predicted error",
-                    m.name()
+                    "{} not piloted split: {}-bsdf misses more light than the best unguided candidate's predicted error",
+                    m.name(),
+                    directions[d]
                 ));
             }
-        }
+            (wanted, skipped)
+        });
         let split: [Option<SplitPilot>; 2] = std::array::from_fn(|d| {
-            let m = find(directions[d], gname);
-            let wanted = wanted(&m.name()) && !misses_light(directions[d]);
-            (splits && wanted).then(|| {
+            let ((wanted, skipped), m) = (skip[d], find(directions[d], gname));
+            (splits && wanted && !skipped).then(|| {
                 let share = SPLIT_PILOT_SHARE * guided_pilot;
                 let until = budget.map(|t| Instant::now() + Duration::from_secs_f64(share * t));
                 let stream = 0xa071_0000_0000_0000 ^ ((d as u64) << 40);
@@ -1054,7 +1058,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             let m = find(directions[d], gname);
             match &split[d] {
                 Some(sp) => sp.seconds,
-                None if wanted(&m.name()) => pass_seconds(scene, &unsplit, m, &gd, 2),
+                None if skip[d].0 => pass_seconds(scene, &unsplit, m, &gd, 2),
                 None => f64::INFINITY,
             }
         };
@@ -1256,8 +1260,6 @@ mod tests {
         }
     }
 
-    /// The splitting ratio is the measured one where it is possible (between `1 / n` and
-    /// 1), and clamped where noise put it outside: never below `1 / n`, never above 1.
     /// A candidate that was not timed (its direction not wanted) is predicted infinite, not
     /// at one pass's error, and so never ranks ahead of a timed one.
     #[test]
@@ -1282,6 +1284,8 @@ mod tests {
         assert!(untimed.predicted.is_infinite(), "{}", untimed.predicted);
     }
 
+    /// The splitting ratio is the measured one where it is possible (between `1 / n` and
+    /// 1), and clamped where noise put it outside: never below `1 / n`, never above 1.
     #[test]
     fn split_ratio_is_measured_within_what_n_branches_can_do() {
         assert_eq!(split_ratio(100.0, 40.0, 4), 0.4);

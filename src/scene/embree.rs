@@ -184,74 +184,46 @@ struct Quad {
 /// `Quad::j[2]` of a triangle without a partner.
 const UNPAIRED: u8 = u8::MAX;
 
-/// Embree's quads from the triangles: two consecutive triangles that share an edge (two
-/// corners, equal to a few ulps) become one quad with the shared edge as its diagonal `v1 v3`, as
-/// the triangulations of quads (OBJ faces, Mitsuba's rectangles and cubes, footprint's own
+/// Embree's quads from the triangles: two consecutive triangles that share an edge
+/// ([`shared_edge`]) become one quad with the shared edge as its diagonal `v1 v3`, as the
+/// triangulations of quads (OBJ faces, Mitsuba's rectangles and cubes, footprint's own
 /// spheres) produce them; any other triangle is a quad whose second half is degenerate
-/// (`v3 = v2`, never hit). The second half takes the shared corners from the first
-/// triangle (a few ulps from its own, and watertight along the diagonal). Returns each quad's four vertex indices into the vertex buffer
-/// (three vertices per triangle, triangle `i`'s at `3i`) and its halves. Embree intersects a
-/// quad as its two triangles at once, so a mesh of quads has half the primitives.
+/// (`v3 = v2`, never hit). The second half takes the shared corners from the first triangle
+/// (a few ulps from its own, and watertight along the diagonal). Returns each quad's four
+/// vertex indices into the vertex buffer (three vertices per triangle, triangle `i`'s at
+/// `3i`) and the quads as footprint's triangles. Embree intersects a quad as its two
+/// triangles at once, so a mesh of quads has half the primitives.
 fn quads(triangles: &[TriangleGeom]) -> (Vec<[u32; 4]>, Vec<Quad>) {
     let corners = |t: &TriangleGeom| [t.p0, t.p0 + t.e1, t.p0 + t.e2];
-    // A triangle keeps a corner and two edges, so a corner it shares comes back from
-    // `p0 + e1` within a few ulps of its neighbour's, not always bit for bit.
-    let same = |a: Vec3, b: Vec3| (a - b).abs().max_element() <= 1e-6 * a.abs().max_element();
-    let (mut index, mut halves) = (Vec::new(), Vec::new());
+    let (mut index, mut quads) = (Vec::new(), Vec::new());
     let mut i = 0;
     while i < triangles.len() {
         let a = corners(&triangles[i]);
         let ia = 3 * i as u32;
-        // The pair (i, i + 1) when exactly one corner of each lies off the other.
-        let pair = triangles.get(i + 1).and_then(|t| {
-            let b = corners(t);
-            let in_b = |p: Vec3| b.iter().any(|&q| same(p, q));
-            let in_a = |q: Vec3| a.iter().any(|&p| same(p, q));
-            let ka: Vec<usize> = (0..3).filter(|&k| !in_b(a[k])).collect();
-            let kb: Vec<usize> = (0..3).filter(|&k| !in_a(b[k])).collect();
-            (ka.len() == 1 && kb.len() == 1).then(|| (ka[0], kb[0], b))
-        });
-        // The second half's corners 1 and 2 must be two distinct corners of the quad (a
-        // sliver whose corners fall within the tolerance of one another stays alone).
-        let pair = pair.filter(|&(k, m, b)| {
-            let q = (k + 2) % 3;
-            let pos = |c: usize| {
-                if c == m {
-                    0
-                } else if same(b[c], a[q]) {
-                    1
-                } else {
-                    2
-                }
-            };
-            pos(1) != pos(2)
-        });
-        match pair {
-            Some((k, m, b)) => {
-                // v0 = a[k], v1 = a[k + 1], v3 = a[k + 2]: the first half is triangle i,
-                // its corner c at Embree's position (c - k) mod 3.
+        match triangles
+            .get(i + 1)
+            .and_then(|t| shared_edge(&a, &corners(t)))
+        {
+            Some((k, m, second)) => {
+                // v0 = a[k], v1 = a[k + 1], v3 = a[k + 2], v2 = b[m]: the first half is
+                // triangle i, its corner c at Embree's position (c - k) mod 3.
                 let (p, q) = ((k + 1) % 3, (k + 2) % 3);
                 let ib = 3 * (i as u32 + 1);
                 index.push([ia + k as u32, ia + p as u32, ib + m as u32, ia + q as u32]);
-                // The second half (v2, v3, v1) = (b[m], a[q], a[p]).
-                let pos = |c: usize| -> u8 {
-                    if c == m {
-                        0
-                    } else if same(b[c], a[q]) {
-                        1
-                    } else {
-                        2
-                    }
-                };
-                halves.push(Quad {
+                quads.push(Quad {
                     first: i as u32,
-                    j: [((4 - k) % 3) as u8, ((5 - k) % 3) as u8, pos(1), pos(2)],
+                    j: [
+                        ((4 - k) % 3) as u8,
+                        ((5 - k) % 3) as u8,
+                        second[0],
+                        second[1],
+                    ],
                 });
                 i += 2;
             }
             None => {
                 index.push([ia, ia + 1, ia + 2, ia + 2]);
-                halves.push(Quad {
+                quads.push(Quad {
                     first: i as u32,
                     j: [1, 2, UNPAIRED, UNPAIRED],
                 });
@@ -259,7 +231,36 @@ fn quads(triangles: &[TriangleGeom]) -> (Vec<[u32; 4]>, Vec<Quad>) {
             }
         }
     }
-    (index, halves)
+    (index, quads)
+}
+
+/// Two corners equal to a few ulps: a triangle keeps a corner and two edges, so a corner it
+/// shares comes back from `p0 + e1` within a few ulps of its neighbour's, not always bit
+/// for bit.
+#[inline]
+fn same(a: Vec3, b: Vec3) -> bool {
+    (a - b).abs().max_element() <= 1e-6 * a.abs().max_element()
+}
+
+/// When triangles `a` and `b` share an edge (exactly one corner of each lies off the
+/// other): the corner `k` of `a` and the corner `m` of `b` off it, and where `b`'s corners 1
+/// and 2 stand in the quad's second half `(v2, v3, v1) = (b[m], a[k + 2], a[k + 1])`. A
+/// sliver whose two shared corners fall on one corner of `a` is not paired.
+fn shared_edge(a: &[Vec3; 3], b: &[Vec3; 3]) -> Option<(usize, usize, [u8; 2])> {
+    let off = |x: &[Vec3; 3], y: &[Vec3; 3]| {
+        let mut alone = (0..3).filter(|&c| !y.iter().any(|&q| same(x[c], q)));
+        let c = alone.next()?;
+        alone.next().is_none().then_some(c)
+    };
+    let (k, m) = (off(a, b)?, off(b, a)?);
+    let v3 = a[(k + 2) % 3];
+    let pos = |c: usize| match c {
+        _ if c == m => 0,
+        _ if same(b[c], v3) => 1,
+        _ => 2,
+    };
+    let second = [pos(1), pos(2)];
+    (second[0] != second[1]).then_some((k, m, second))
 }
 
 /// The triangle and its barycentrics of a hit at Embree's quad coordinates `(u, v)`: the
@@ -480,7 +481,7 @@ mod tests {
                     let t2 = if flip { [a, d, c] } else { [a, c, d] };
                     let tris = [rotate([a, b, c], r1), rotate(t2, r2)]
                         .map(|[p, q, s]| TriangleGeom::new(p, q, s));
-                    let (index, halves) = quads(&tris);
+                    let (index, made) = quads(&tris);
                     assert_eq!(index.len(), 1, "a shared edge makes one quad");
                     let corners: Vec<Vec3> = tris
                         .iter()
@@ -498,7 +499,7 @@ mod tests {
                                 let (s, t) = barycentric(p, v2, v3, v1);
                                 (1.0 - s, 1.0 - t)
                             };
-                            let (got, g1, g2) = on_triangle(&halves[0], u, v);
+                            let (got, g1, g2) = on_triangle(&made[0], u, v);
                             assert_eq!(got as usize, i, "r1 {r1} r2 {r2} flip {flip}");
                             let q = tris[got as usize].point(g1, g2);
                             assert!(
@@ -527,9 +528,9 @@ mod tests {
         };
         // Two corners shared but not the same edge would need a third: here only one
         // corner is shared (`t(0)`'s second is `t(1)`'s first).
-        let (index, halves) = quads(&[t(0.0), t(1.0), t(5.0)]);
+        let (index, made) = quads(&[t(0.0), t(1.0), t(5.0)]);
         assert_eq!(index, vec![[0, 1, 2, 2], [3, 4, 5, 5], [6, 7, 8, 8]]);
-        for (i, h) in halves.iter().enumerate() {
+        for (i, h) in made.iter().enumerate() {
             assert_eq!(on_triangle(h, 0.25, 0.5), (i as u32, 0.25, 0.5));
             // A hit a rounding past the diagonal edge stays where it is (no mirrored half).
             assert_eq!(on_triangle(h, 0.6, 0.40001), (i as u32, 0.6, 0.40001));

@@ -25,10 +25,11 @@ pub struct Prefetched {
     textures: HashMap<PathBuf, (Texture, usize)>,
 }
 
-/// A file to load ahead.
-enum Job {
-    Mesh(PathBuf),
-    Texture(PathBuf),
+/// The kinds of file loaded ahead.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+enum Kind {
+    Mesh,
+    Texture,
 }
 
 impl Prefetched {
@@ -36,50 +37,50 @@ impl Prefetched {
     /// parallel. Elements whose type or file name cannot be read are left to the builder,
     /// which reports them.
     pub fn load(doc: &Doc, root: Node) -> Prefetched {
-        let file_of = |n: Node| -> Option<PathBuf> {
-            let name = Props::new(doc, n).ok()?.string("filename").ok()??;
-            Some(doc.file(&name))
-        };
-        let mut jobs: Vec<(Job, usize)> = Vec::new();
+        // Each file with the number of elements that name it.
+        let mut uses: HashMap<(Kind, PathBuf), usize> = HashMap::new();
         for n in root.descendants().filter(|n| n.is_element()) {
-            let kind = doc.attr(n, "type").ok().flatten();
-            let job = match (n.tag_name().name(), kind.as_deref()) {
-                ("shape", Some("obj")) => file_of(n).map(Job::Mesh),
-                ("texture", Some("bitmap")) => file_of(n).map(Job::Texture),
-                _ => None,
+            let kind = match (
+                n.tag_name().name(),
+                doc.attr(n, "type").ok().flatten().as_deref(),
+            ) {
+                ("shape", Some("obj")) => Kind::Mesh,
+                ("texture", Some("bitmap")) => Kind::Texture,
+                _ => continue,
             };
-            if let Some(job) = job {
-                match jobs.iter_mut().find(|(j, _)| j.same(&job)) {
-                    Some((_, uses)) => *uses += 1,
-                    None => jobs.push((job, 1)),
-                }
+            let name = Props::new(doc, n)
+                .ok()
+                .and_then(|p| p.string("filename").ok().flatten());
+            if let Some(name) = name {
+                *uses.entry((kind, doc.file(&name))).or_default() += 1;
             }
         }
+        let mut jobs: Vec<_> = uses.into_iter().collect();
         // Largest first, so that the big files do not start last.
-        jobs.sort_by_cached_key(|(j, _)| {
-            std::cmp::Reverse(std::fs::metadata(j.path()).map_or(0, |m| m.len()))
+        jobs.sort_by_cached_key(|((_, path), _)| {
+            std::cmp::Reverse(std::fs::metadata(path).map_or(0, |m| m.len()))
         });
-        let loaded: Vec<(Loaded, usize)> = jobs
+        let loaded: Vec<_> = jobs
             .into_par_iter()
             .with_max_len(1)
-            .map(|(j, uses)| {
-                let l = match j {
-                    Job::Mesh(p) => Loaded::Mesh(shapes::load_obj(&p).ok(), p),
-                    Job::Texture(p) => Loaded::Texture(Texture::load(&p).ok(), p),
+            .map(|((kind, path), uses)| {
+                let file = match kind {
+                    Kind::Mesh => shapes::load_obj(&path).ok().map(File::Mesh),
+                    Kind::Texture => Texture::load(&path).ok().map(File::Texture),
                 };
-                (l, uses)
+                (path, file, uses)
             })
             .collect();
         let mut out = Prefetched::default();
-        for (l, uses) in loaded {
-            match l {
-                Loaded::Mesh(Some(m), p) => {
-                    out.meshes.insert(p, (m, uses));
+        for (path, file, uses) in loaded {
+            match file {
+                Some(File::Mesh(m)) => {
+                    out.meshes.insert(path, (m, uses));
                 }
-                Loaded::Texture(Some(t), p) => {
-                    out.textures.insert(p, (t, uses));
+                Some(File::Texture(t)) => {
+                    out.textures.insert(path, (t, uses));
                 }
-                _ => {}
+                None => {}
             }
         }
         out
@@ -102,6 +103,12 @@ impl Prefetched {
     }
 }
 
+/// A file loaded ahead.
+enum File {
+    Mesh(MeshData),
+    Texture(Texture),
+}
+
 /// The data at `path`: a copy while other elements will still ask for it, the data itself
 /// for the last.
 fn take<T: Clone>(files: &mut HashMap<PathBuf, (T, usize)>, path: &Path) -> Option<T> {
@@ -111,27 +118,6 @@ fn take<T: Clone>(files: &mut HashMap<PathBuf, (T, usize)>, path: &Path) -> Opti
         return Some(data.clone());
     }
     files.remove(path).map(|(data, _)| data)
-}
-
-enum Loaded {
-    Mesh(Option<MeshData>, PathBuf),
-    Texture(Option<Texture>, PathBuf),
-}
-
-impl Job {
-    fn path(&self) -> &Path {
-        match self {
-            Job::Mesh(p) | Job::Texture(p) => p,
-        }
-    }
-
-    /// The same kind of file at the same path.
-    fn same(&self, other: &Job) -> bool {
-        matches!(
-            (self, other),
-            (Job::Mesh(a), Job::Mesh(b)) | (Job::Texture(a), Job::Texture(b)) if a == b
-        )
-    }
 }
 
 #[cfg(test)]
