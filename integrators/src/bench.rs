@@ -18,8 +18,11 @@ use std::path::Path;
 use std::time::Instant;
 
 /// Paired runs (a general and a specialised one, their order alternating) of each path-loop
-/// measurement.
-const LOOP_ROUNDS: usize = 5;
+/// measurement, each `seconds / LOOP_ROUNDS` long. Many short pairs rather than a few long
+/// ones: the host's speed drifts over seconds and shifts both runs of a short pair alike, so
+/// the median of the pairs' ratios settles (five 1-s pairs on the 2-core VM: medians of
+/// two runs 1.155 and 1.105 for the same binary, ranges 0.89-1.21).
+const LOOP_ROUNDS: usize = 15;
 
 /// Runs every measurement; `extra` is a scene (e.g. Veach Ajar) whose guided path
 /// throughput is measured next to door's.
@@ -289,13 +292,16 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
                 ratios.push(rate[1] / rate[0]);
             }
             ratios.sort_by(f64::total_cmp);
+            let quartile = |q: usize| ratios[(q * (LOOP_ROUNDS - 1) + 2) / 4];
             println!(
-                "{}: {m} path loop, general {:.3} M paths/s, specialised ({}) {:.3} M paths/s (the best of {LOOP_ROUNDS}): ratio {:.3}, median of {LOOP_ROUNDS} paired runs (range {:.3}-{:.3})",
+                "{}: {m} path loop, general {:.3} M paths/s, specialised ({}) {:.3} M paths/s (the best of {LOOP_ROUNDS}): ratio {:.3}, median of {LOOP_ROUNDS} paired runs (quartiles {:.3}-{:.3}, range {:.3}-{:.3})",
                 path.display(),
                 best[0] / 1e6,
                 opts.specialisation(sc).name(),
                 best[1] / 1e6,
-                ratios[LOOP_ROUNDS / 2],
+                quartile(2),
+                quartile(1),
+                quartile(3),
                 ratios[0],
                 ratios[LOOP_ROUNDS - 1]
             );
