@@ -118,6 +118,44 @@ fn render_with_auto_keeps_the_budget_and_reports_the_choice() {
     assert!(Method::parse_request("pt-bsdf").unwrap().1.is_none());
 }
 
+/// An image of more than `PILOT_MAX_PIXELS` pixels is piloted at a lower resolution (both
+/// sides halved here), and the maps the pilot built there guide the render at the image's
+/// own resolution: the run names the pilot's resolution, the image has the requested size,
+/// and every pixel is valid and lit.
+#[test]
+fn a_large_image_is_piloted_at_a_lower_resolution_and_its_maps_guide_the_render() {
+    let mut scene = load_scene(&common::scene_path("cornell")).unwrap();
+    let (w, h) = (192, 160);
+    assert!((w * h) as usize > footprint_integrators::auto::PILOT_MAX_PIXELS);
+    scene.camera = scene.camera.with_resolution(w, h).unwrap();
+    scene.maps.photons = 20_000;
+    scene.maps.importons = 20_000;
+    let spec = AutoSpec::new(None, Some(Method::parse("pt-footprint").unwrap()));
+    let o = RenderOptions { spp: 2, ..opts() };
+    let c = choose(&scene, &o, &spec);
+    eprintln!("{}: {}", c.method.name(), c.reason);
+    assert!(c.reason.contains("piloted at 96x80"), "{}", c.reason);
+    assert!(c.guidance.is_some(), "the piloted maps are handed on");
+    assert!(
+        c.candidates
+            .iter()
+            .all(|k| k.pass_seconds > 0.0 && k.predicted >= 0.0),
+        "{:?}",
+        c.candidates
+    );
+    let mut r = o.clone();
+    r.apply_names(Some("auto"), Some("footprint")).unwrap();
+    let out = render(&scene, &r, |_| {});
+    assert!(
+        out.auto
+            .as_deref()
+            .unwrap_or("")
+            .contains("piloted at 96x80")
+    );
+    assert_eq!((out.image.width, out.image.height), (w, h));
+    assert!(out.image.all_valid() && out.image.mean().min_element() > 0.0);
+}
+
 /// Every candidate guided (`--integrator auto --guide footprint`) with a sample budget whose
 /// maps would not fit the guided-maps share: the maps are piloted anyway, and a footprint
 /// method is chosen (this panicked on an empty candidate list).

@@ -115,7 +115,7 @@ fn shapes_transforms_and_area_lights() {
     let d = dir_with("shapes", &[("scene.xml", &scene_xml(body))]);
     let s = load(&d, &[], false).unwrap();
     let mut area_by_material = std::collections::HashMap::<u32, f32>::new();
-    for (t, sh) in s.triangles.iter().zip(&s.shading) {
+    for (t, sh) in s.triangles.iter().zip(s.shading.iter()) {
         *area_by_material.entry(sh.material).or_default() += t.area();
     }
     // Light rectangle: [-1,1]^2 rotated +90 deg about x (its +z normal becomes -y), at y = 2.
@@ -159,7 +159,7 @@ fn shapes_transforms_and_area_lights() {
     let m = &s.materials[default_mats[0] as usize];
     assert!(!m.two_sided && m.kind == MaterialKind::Diffuse && m.kd == footprint::Rgb::splat(0.5));
     let (mut cube_area, mut sphere_area) = (0.0, 0.0);
-    for (t, sh) in s.triangles.iter().zip(&s.shading) {
+    for (t, sh) in s.triangles.iter().zip(s.shading.iter()) {
         if sh.material != default_mats[0] {
             continue;
         }

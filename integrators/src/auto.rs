@@ -155,6 +155,32 @@ pub const MIN_BUDGET_PAIRS: f64 = 40.0;
 pub const FOLDS: usize = 4;
 /// Pilot samples per block of pixels on which missing light is measured (see [`measure`]).
 pub const BIAS_BLOCK_SAMPLES: f64 = 64.0;
+/// An image of more pixels than this is piloted at a lower resolution
+/// ([`pilot_resolution`]), the same view through fewer, larger pixels. The pilot's least
+/// passes (six unguided, four guided combined and three split per direction) and the view
+/// pass's importance target render every pixel, so their cost grows with the image while
+/// the budget does not: door at its own 256x256 and 16 s piloted for 11-13 s (its pixels
+/// four times those of the 128x128 at which `auto` was tuned), and `auto`'s error was
+/// 2.7-5.4x `lt-footprint`'s (README "`auto` against the fixed methods"). One pass of a
+/// method has about the same relative variance per pixel at either resolution (one path per
+/// pixel, the same paths; a light pass traces one path per pixel, and each of its splats
+/// carries the pixel count's share), while its time scales with the pixel count: the
+/// pilot's pass times are scaled by the ratio of the pixel counts, which leaves the ranking
+/// as measured and predicts each candidate's error at the image's resolution. The maps are
+/// not tied to the resolution (the view pass draws raster positions uniformly over the
+/// image; its importance target is coarser), so a guided winner still reuses them.
+pub const PILOT_MAX_PIXELS: usize = 128 * 128;
+
+/// The pilot's resolution for a `width` x `height` image: the image's own up to
+/// [`PILOT_MAX_PIXELS`] pixels, else both sides divided (rounded up) by the least integer
+/// that brings it under.
+pub fn pilot_resolution(width: u32, height: u32) -> (u32, u32) {
+    let pixels = |f: u32| width.div_ceil(f) as usize * height.div_ceil(f) as usize;
+    let f = (1..)
+        .find(|&f| pixels(f) <= PILOT_MAX_PIXELS)
+        .expect("1x1 fits");
+    (width.div_ceil(f), height.div_ceil(f))
+}
 
 /// What `auto` chooses among.
 #[derive(Clone, Debug, PartialEq)]
@@ -215,7 +241,8 @@ pub struct Candidate {
     pub method: String,
     /// Predicted relative MSE at the time left.
     pub predicted: f64,
-    /// Seconds per pass.
+    /// Seconds per pass at the image's resolution (a lower-resolution pilot's scaled by the
+    /// pixel counts' ratio, [`PILOT_MAX_PIXELS`]).
     pub pass_seconds: f64,
     /// The relative variance of one pass (`predicted` divides it by the passes left).
     pub pass_variance: f64,
@@ -824,6 +851,26 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     }
     let budget = opts.time;
     let unguided = Guidance::default();
+    // ---- A large image is piloted at a lower resolution (PILOT_MAX_PIXELS) ----
+    let (image_w, image_h) = (scene.camera.width, scene.camera.height);
+    let (pilot_w, pilot_h) = pilot_resolution(image_w, image_h);
+    let lower;
+    let scene = if (pilot_w, pilot_h) == (image_w, image_h) {
+        scene
+    } else {
+        lower = scene
+            .with_resolution(pilot_w, pilot_h)
+            .expect("a smaller resolution of a valid camera");
+        &lower
+    };
+    // Seconds of a pass at the image's resolution per second of a pilot pass.
+    let pixel_ratio = (image_w as f64 * image_h as f64) / scene.camera.pixel_count() as f64;
+    let mut notes = Vec::new();
+    if pixel_ratio > 1.0 {
+        notes.push(format!(
+            "piloted at {pilot_w}x{pilot_h} (the {image_w}x{image_h} image has more than {PILOT_MAX_PIXELS} pixels; pass times scaled by {pixel_ratio:.2})"
+        ));
+    }
     // ---- pt's and lt's own pass times; a budget too short for a pilot ----
     let t_pt1 = pass_seconds(scene, opts, find("pt", "bsdf"), &unguided, 1);
     let t_lt1 = pass_seconds(scene, opts, find("lt", "bsdf"), &unguided, 1);
@@ -875,12 +922,13 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     // The time the candidates are compared at.
     let horizon = |spent: f64| match budget {
         Some(t) => (t - spent).max(1e-3),
-        None => opts.spp as f64 * t_pt,
+        None => opts.spp as f64 * t_pt * pixel_ratio,
     };
     // Every pilot is measured at the end, with the metric's weights read from the other
     // pilots' combined images (see below).
     let mut pilots: Vec<(&str, Pilot, [f64; 3], [Option<SplitPilot>; 2])> = Vec::new();
-    let secs = [t_c, t_pt, t_lt];
+    // Pass times at the image's resolution (the pilot's scaled, PILOT_MAX_PIXELS).
+    let secs = [t_c, t_pt, t_lt].map(|t| t * pixel_ratio);
     // Guided maps are piloted even when they do not fit when nothing else is wanted.
     let only_guided = spec.candidates.iter().all(|m| m.guide.uses_particles());
     // The unguided candidates measured on the unguided pilot alone (its own image as `R`):
@@ -921,7 +969,6 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         let layer = unguided_alone.iter().find(|c| c.method == name);
         layer.is_some_and(|c| c.missing > best_at_least)
     };
-    let mut notes = Vec::new();
     // ---- Guided pilots, when their maps fit ----
     let mut built: Vec<(String, Guidance)> = Vec::new();
     let guided_start = Instant::now();
@@ -1064,7 +1111,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         };
         let (t_pt_g, t_lt_g) = (time(0), time(1));
         last_guided = Some(g0.elapsed().as_secs_f64());
-        let secs = [t_c_g, t_pt_g, t_lt_g];
+        let secs = [t_c_g, t_pt_g, t_lt_g].map(|t| t * pixel_ratio);
         pilots.push((gname, p, secs, split));
         built.push((gname.to_string(), gd));
     }
@@ -1257,6 +1304,24 @@ mod tests {
             width: w as u32,
             height: h as u32,
             pixels: (0..w * h).map(|i| Rgb::splat(value(i))).collect(),
+        }
+    }
+
+    /// Images over PILOT_MAX_PIXELS are piloted with both sides divided alike.
+    #[test]
+    fn pilot_resolution_divides_both_sides_until_the_pixels_fit() {
+        // At or under the limit: the image's own.
+        assert_eq!(pilot_resolution(128, 128), (128, 128));
+        assert_eq!(pilot_resolution(128, 72), (128, 72));
+        assert_eq!(pilot_resolution(16384, 1), (16384, 1));
+        // Over it: the least divisor that fits, sides rounded up.
+        assert_eq!(pilot_resolution(256, 256), (128, 128));
+        assert_eq!(pilot_resolution(129, 128), (65, 64));
+        assert_eq!(pilot_resolution(1920, 1080), (160, 90));
+        assert_eq!(pilot_resolution(16385, 1), (8193, 1));
+        for (w, h) in [(256u32, 256u32), (1000, 3), (4096, 2160), (300, 200)] {
+            let (pw, ph) = pilot_resolution(w, h);
+            assert!(pw as usize * ph as usize <= PILOT_MAX_PIXELS, "{w}x{h}");
         }
     }
 

@@ -24,7 +24,7 @@ use footprint::scene::features::Specialisation;
 /// glossy one, [`guides_at`]); rule 4 skips the maps otherwise.
 pub fn particles_stored(scene: &Scene) -> bool {
     let mut used = vec![false; scene.materials.len()];
-    for s in &scene.shading {
+    for s in scene.shading.iter() {
         used[s.material as usize] = true;
     }
     scene

@@ -31,6 +31,7 @@ use crate::scene::light::Light;
 use crate::scene::texture::Texture;
 use crate::settings::{GuideParams, MapSettings, RenderSettings};
 use glam::{Vec2, Vec3};
+use std::sync::Arc;
 
 /// The least probability of choosing a light for which the choice reuses the light point's
 /// number ([`Scene::choose_light`]): stretched back from an interval of width `2^-8`, a
@@ -45,18 +46,21 @@ pub struct LoadStats {
     pub meshes: usize,
 }
 
+/// Cloning shares the large, immutable parts (triangles, shading data, textures, the BVH)
+/// and copies the rest: [`Scene::with_resolution`] makes a view through another camera.
+#[derive(Clone)]
 pub struct Scene {
     pub camera: Camera,
-    pub triangles: Vec<TriangleGeom>,
-    pub shading: Vec<TriangleShading>,
+    pub triangles: Arc<Vec<TriangleGeom>>,
+    pub shading: Arc<Vec<TriangleShading>>,
     pub materials: Vec<Material>,
-    pub textures: Vec<Texture>,
+    pub textures: Arc<Vec<Texture>>,
     pub lights: Vec<Light>,
     /// Chooses lights in proportion to power.
     pub light_distribution: Distribution1D,
     /// The light choice draws its own number (see [`Scene::choose_light`]).
     pub light_choice_own_number: bool,
-    pub bvh: Accel,
+    pub bvh: Arc<Accel>,
     pub settings: RenderSettings,
     pub maps: MapSettings,
     pub guide: GuideParams,
@@ -171,14 +175,14 @@ impl Scene {
         let effects = Effects::analyse(&materials, &shading, &lights);
         Ok(Scene {
             camera,
-            triangles,
-            shading,
+            triangles: Arc::new(triangles),
+            shading: Arc::new(shading),
             materials,
             light_choice_own_number,
-            textures,
+            textures: Arc::new(textures),
             lights,
             light_distribution,
-            bvh,
+            bvh: Arc::new(bvh),
             settings,
             maps: MapSettings::default(),
             guide: GuideParams::default(),
@@ -188,6 +192,16 @@ impl Scene {
             import_notes: Vec::new(),
             source_params: String::new(),
             environment_light,
+        })
+    }
+
+    /// The same scene seen by a camera of `width` x `height` pixels (its position, view and
+    /// filter kept); the geometry, textures and BVH are shared, not copied. `auto`'s pilot
+    /// renders a large image at a lower resolution this way.
+    pub fn with_resolution(&self, width: u32, height: u32) -> Result<Scene, String> {
+        Ok(Scene {
+            camera: self.camera.with_resolution(width, height)?,
+            ..self.clone()
         })
     }
 
