@@ -51,10 +51,10 @@ pub struct LoadStats {
 #[derive(Clone)]
 pub struct Scene {
     pub camera: Camera,
-    pub triangles: Arc<Vec<TriangleGeom>>,
-    pub shading: Arc<Vec<TriangleShading>>,
+    pub triangles: Arc<[TriangleGeom]>,
+    pub shading: Arc<[TriangleShading]>,
     pub materials: Vec<Material>,
-    pub textures: Arc<Vec<Texture>>,
+    pub textures: Arc<[Texture]>,
     pub lights: Vec<Light>,
     /// Chooses lights in proportion to power.
     pub light_distribution: Distribution1D,
@@ -175,11 +175,11 @@ impl Scene {
         let effects = Effects::analyse(&materials, &shading, &lights);
         Ok(Scene {
             camera,
-            triangles: Arc::new(triangles),
-            shading: Arc::new(shading),
+            triangles: Arc::from(triangles),
+            shading: Arc::from(shading),
             materials,
             light_choice_own_number,
-            textures: Arc::new(textures),
+            textures: Arc::from(textures),
             lights,
             light_distribution,
             bvh: Arc::new(bvh),
