@@ -875,6 +875,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         ));
     }
     // ---- pt's and lt's own pass times; a budget too short for a pilot ----
+    // The pilot's own passes, unscaled: what the budget must hold is the pilot's least cost.
     let t_pt1 = pass_seconds(scene, opts, find("pt", "bsdf"), &unguided, 1);
     let t_lt1 = pass_seconds(scene, opts, find("lt", "bsdf"), &unguided, 1);
     if let Some(t) = budget.filter(|t| *t < MIN_BUDGET_PAIRS * (t_pt1 + t_lt1)) {
@@ -922,16 +923,17 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             guidance: None,
         };
     }
-    // The time the candidates are compared at.
+    // Pass times at the image's resolution (the pilot's scaled, PILOT_MAX_PIXELS).
+    let secs = [t_c, t_pt, t_lt].map(|t| t * pixel_ratio);
+    // The time the candidates are compared at (without a budget: the samples asked for, at
+    // path tracing's pass time).
     let horizon = |spent: f64| match budget {
         Some(t) => (t - spent).max(1e-3),
-        None => opts.spp as f64 * t_pt * pixel_ratio,
+        None => opts.spp as f64 * secs[1],
     };
     // Every pilot is measured at the end, with the metric's weights read from the other
     // pilots' combined images (see below).
     let mut pilots: Vec<(&str, Pilot, [f64; 3], [Option<SplitPilot>; 2])> = Vec::new();
-    // Pass times at the image's resolution (the pilot's scaled, PILOT_MAX_PIXELS).
-    let secs = [t_c, t_pt, t_lt].map(|t| t * pixel_ratio);
     // Guided maps are piloted even when they do not fit when nothing else is wanted.
     let only_guided = spec.candidates.iter().all(|m| m.guide.uses_particles());
     // The unguided candidates measured on the unguided pilot alone (its own image as `R`):
