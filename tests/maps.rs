@@ -71,7 +71,8 @@ fn half_floats_round_trip() {
 /// first, and reports fewer when fewer exist; a brute-force loop is the reference.
 #[test]
 fn knn_query_matches_brute_force_with_exclusions() {
-    let particles = random_particles(20_000, 1);
+    // In the map's own (spatial) order, so that particle `i` is the map's particle `i`.
+    let particles = ParticleMap::spatial_order(&random_particles(20_000, 1));
     let map = ParticleMap::build(MapKind::Photons, &particles);
     assert_eq!(map.len(), particles.len());
     let mut rng = Rng::new(2, 0, 0);

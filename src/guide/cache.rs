@@ -93,7 +93,7 @@ const NONE: u32 = u32::MAX;
 /// two bits are the split axis (3: a leaf), the rest the right child's index or the leaf's
 /// index in [`GuideCache::leaves`] (its region per normal bucket); the left child follows
 /// its parent.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 struct PackedNode {
     split: f32,
     link: u32,
@@ -157,6 +157,7 @@ pub struct GuideCache {
 }
 
 /// A region to build: its seeds' bucket in one leaf.
+#[derive(Debug, PartialEq)]
 struct Job {
     centre: Vec3,
     normal: Vec3,
@@ -180,18 +181,15 @@ impl GuideCache {
             .copied()
             .collect();
         let n_seeds = seeds.len();
-        let (mut nodes, mut leaves) = (Vec::new(), Vec::new());
-        let mut jobs = Vec::new();
-        if !seeds.is_empty() {
-            split(
-                &mut seeds,
-                params.region_seeds,
-                max_dist,
-                &mut nodes,
-                &mut leaves,
-                &mut jobs,
-            );
-        }
+        let Subtree {
+            nodes,
+            leaves,
+            jobs,
+        } = if seeds.is_empty() {
+            Subtree::default()
+        } else {
+            split(&mut seeds, params.region_seeds, max_dist, PARALLEL_SEEDS)
+        };
         let regions: Vec<Region> = jobs
             .par_iter()
             .map(|job| build_region(map, guide, params, max_dist, job))
@@ -263,16 +261,46 @@ impl GuideCache {
     }
 }
 
-/// Splits `seeds` into leaves (appending nodes in depth-first order, the left child right
-/// after its parent) and queues one job per (leaf, normal bucket).
-fn split(
-    seeds: &mut [Seed],
-    max_seeds: usize,
-    max_extent: f32,
-    nodes: &mut Vec<PackedNode>,
-    leaves: &mut Vec<[u32; 6]>,
-    jobs: &mut Vec<Job>,
-) {
+/// Part of the region tree, its node, leaf and job indices counted from its own start
+/// ([`Subtree::append`] moves them to where it lands).
+#[derive(Default)]
+struct Subtree {
+    nodes: Vec<PackedNode>,
+    leaves: Vec<[u32; 6]>,
+    jobs: Vec<Job>,
+}
+
+impl Subtree {
+    /// Appends `other` after this subtree's nodes, leaves and jobs.
+    fn append(&mut self, other: Subtree) {
+        let (n0, l0, j0) = (self.nodes.len(), self.leaves.len(), self.jobs.len() as u32);
+        self.nodes.extend(other.nodes.into_iter().map(|node| {
+            let (axis, index) = (node.link >> INDEX_BITS, node.link & ((1 << INDEX_BITS) - 1));
+            if axis == LEAF {
+                PackedNode::leaf(l0 + index as usize)
+            } else {
+                PackedNode::inner(axis as usize, node.split, n0 + index as usize)
+            }
+        }));
+        self.leaves.extend(
+            other
+                .leaves
+                .into_iter()
+                .map(|leaf| leaf.map(|r| if r == NONE { NONE } else { r + j0 })),
+        );
+        self.jobs.extend(other.jobs);
+    }
+}
+
+/// Seeds above which the two halves of a split are built in parallel (the median
+/// selection is linear in the seeds: the root's alone is sequential).
+const PARALLEL_SEEDS: usize = 1 << 15;
+
+/// Splits `seeds` into leaves (nodes in depth-first order, the left child right after its
+/// parent) and queues one job per (leaf, normal bucket). The halves of a split of at least
+/// `parallel_from` seeds are built in parallel and joined in the same order: the tree does
+/// not depend on the threads.
+fn split(seeds: &mut [Seed], max_seeds: usize, max_extent: f32, parallel_from: usize) -> Subtree {
     let (lo, hi) = seeds.iter().fold(
         (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
         |(lo, hi), s| (lo.min(s.position), hi.max(s.position)),
@@ -287,21 +315,38 @@ fn split(
     };
     let small = seeds.len() <= max_seeds && ext[axis] <= max_extent;
     if small || seeds.len() < 2 || !(ext[axis] > 0.0) {
-        nodes.push(PackedNode::leaf(leaves.len()));
-        leaves.push(leaf_jobs(seeds, jobs));
-        return;
+        let mut t = Subtree {
+            nodes: vec![PackedNode::leaf(0)],
+            ..Default::default()
+        };
+        let leaf = leaf_jobs(seeds, &mut t.jobs);
+        t.leaves.push(leaf);
+        return t;
     }
-    let me = nodes.len();
-    nodes.push(PackedNode::inner(axis, 0.0, 0));
     let mid = seeds.len() / 2;
     seeds.select_nth_unstable_by(mid, |a, b| a.position[axis].total_cmp(&b.position[axis]));
     let split_at = seeds[mid].position[axis];
     // Lookups send points below the split value left; the median seed starts the right half.
+    let parallel = seeds.len() >= parallel_from;
     let (left, right) = seeds.split_at_mut(mid);
-    split(left, max_seeds, max_extent, nodes, leaves, jobs);
-    let r = nodes.len();
-    split(right, max_seeds, max_extent, nodes, leaves, jobs);
-    nodes[me] = PackedNode::inner(axis, split_at, r);
+    let (left, right) = if parallel {
+        rayon::join(
+            || split(left, max_seeds, max_extent, parallel_from),
+            || split(right, max_seeds, max_extent, parallel_from),
+        )
+    } else {
+        (
+            split(left, max_seeds, max_extent, parallel_from),
+            split(right, max_seeds, max_extent, parallel_from),
+        )
+    };
+    let mut t = Subtree {
+        nodes: vec![PackedNode::inner(axis, split_at, 1 + left.nodes.len())],
+        ..Default::default()
+    };
+    t.append(left);
+    t.append(right);
+    t
 }
 
 /// One job per normal bucket present in a leaf: the seed nearest the bucket's mean position
@@ -406,4 +451,54 @@ fn build_region(
             .and_then(|d| d.get().tabulate(&frame, params.mis_table));
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::Rng;
+
+    /// Building the halves of large splits in parallel gives the tree, leaves and jobs of
+    /// the sequential build (its indices moved by `Subtree::append`), and the tree finds
+    /// every seed's own region.
+    #[test]
+    fn the_parallel_split_builds_the_sequential_tree() {
+        let mut rng = Rng::new(5, 0, 0);
+        let seeds: Vec<Seed> = (0..60_000)
+            .map(|i| Seed {
+                position: Vec3::new(
+                    rng.uniform() * 4.0,
+                    rng.uniform() * 2.0,
+                    rng.uniform() * 3.0,
+                ),
+                normal: SIGNED_AXES[i % 6],
+            })
+            .collect();
+        let build = |parallel_from: usize| {
+            let mut s = seeds.clone();
+            split(&mut s, 500, 0.5, parallel_from)
+        };
+        let (sequential, parallel) = (build(usize::MAX), build(1000));
+        assert!(sequential.leaves.len() > 100, "{}", sequential.leaves.len());
+        assert_eq!(sequential.nodes, parallel.nodes);
+        assert_eq!(sequential.leaves, parallel.leaves);
+        assert_eq!(sequential.jobs, parallel.jobs);
+        let cache = GuideCache {
+            nodes: parallel.nodes,
+            leaves: parallel.leaves,
+            regions: Vec::new(),
+            stats: CacheStats::default(),
+        };
+        for s in seeds.iter().step_by(97) {
+            let r = cache
+                .lookup_index(s.position, s.normal)
+                .expect("a seed's region");
+            let job = &parallel.jobs[r as usize];
+            assert!(
+                job.normal.dot(s.normal) > 0.5,
+                "the region of a seed's own normal bucket"
+            );
+            assert!(job.centre.distance(s.position) <= job.radius + 1e-5);
+        }
+    }
 }

@@ -22,7 +22,46 @@
 use crate::Rgb;
 use glam::{Vec2, Vec3};
 use kiddo::SquaredEuclidean;
+use rayon::prelude::*;
 use std::time::{Duration, Instant};
+
+/// The 30-bit Morton code of a point in the unit cube (10 bits per axis, interleaved).
+fn morton3(unit: [f32; 3]) -> u64 {
+    let spread = |x: f32| {
+        let mut v = ((x.clamp(0.0, 1.0) * 1023.0) as u64) & 0x3ff;
+        v = (v | v << 16) & 0x0300_00ff;
+        v = (v | v << 8) & 0x0300_f00f;
+        v = (v | v << 4) & 0x030c_30c3;
+        (v | v << 2) & 0x0924_9249
+    };
+    spread(unit[0]) | spread(unit[1]) << 1 | spread(unit[2]) << 2
+}
+
+/// The bounds of the particles' positions.
+fn bounds<'a>(particles: impl Iterator<Item = &'a ParticleInput>) -> (Vec3, Vec3) {
+    particles.fold(
+        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(p.position), hi.max(p.position)),
+    )
+}
+
+/// The particles in Morton order over the bounds `lo`..`hi` (ties in input order). A map
+/// keeps its particles so: a query's candidates then lie in a few runs of the records
+/// instead of all over them (a pass stores particles in path order), and its tests of
+/// their normals and planes stop waiting on memory (door, both guide caches: their
+/// queries 0.37-0.52 CPU-s in input order, 0.24-0.36 in this order).
+fn in_spatial_order(particles: &[&ParticleInput], lo: Vec3, hi: Vec3) -> Vec<ParticleInput> {
+    let ext = (hi - lo).max(Vec3::splat(f32::MIN_POSITIVE));
+    let mut keys: Vec<u64> = particles
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| morton3(((p.position - lo) / ext).to_array()) << 32 | i as u64)
+        .collect();
+    keys.par_sort_unstable();
+    keys.par_iter()
+        .map(|k| *particles[(k & 0xffff_ffff) as usize])
+        .collect()
+}
 
 /// What a map holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -341,6 +380,14 @@ fn decode_dir8(e: [u8; 2]) -> Vec3 {
 
 impl ParticleMap {
     /// Builds a map; particles with a non-finite or non-positive weight are dropped.
+    /// `particles` (all valid: finite positions, positive weights) in the order a map
+    /// built from them keeps them: particle `i` of the result is the map's particle `i`
+    /// ([`ParticleMap::get`]).
+    pub fn spatial_order(particles: &[ParticleInput]) -> Vec<ParticleInput> {
+        let (lo, hi) = bounds(particles.iter());
+        in_spatial_order(&particles.iter().collect::<Vec<_>>(), lo, hi)
+    }
+
     pub fn build(kind: MapKind, particles: &[ParticleInput]) -> Self {
         Self::build_from_depth(kind, particles, 0)
     }
@@ -364,10 +411,8 @@ impl ParticleMap {
             .iter()
             .map(|p| p.weight.max_element())
             .fold(0.0f32, f32::max);
-        let (lo, hi) = valid.iter().fold(
-            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-            |(lo, hi), p| (lo.min(p.position), hi.max(p.position)),
-        );
+        let (lo, hi) = bounds(valid.iter().copied());
+        let valid = in_spatial_order(&valid, lo, hi);
         let centre = if valid.is_empty() {
             Vec3::ZERO
         } else {
@@ -376,7 +421,7 @@ impl ParticleMap {
         // The largest weight maps to 2^15, far below the half range's 65504.
         let scale = if max_w > 0.0 { max_w / 32768.0 } else { 1.0 };
         let records: Vec<Record> = valid
-            .iter()
+            .par_iter()
             .map(|p| Record {
                 dir: encode_dir16(p.dir),
                 normal: encode_dir8(p.normal),
@@ -424,7 +469,8 @@ impl ParticleMap {
     /// `tests/maps.rs` and `footprint maps`, which measure the whole map).
     pub const RECORD_BYTES: usize = std::mem::size_of::<Record>();
 
-    /// The decoded particle `i` (weight back at full scale).
+    /// The decoded particle `i` (weight back at full scale): the `i`-th of the map's
+    /// particles in their spatial order ([`ParticleMap::spatial_order`]).
     pub fn get(&self, i: u32) -> (Vec3, Vec3, Rgb) {
         let r = &self.records[i as usize];
         let w = Rgb::new(
@@ -506,25 +552,39 @@ impl ParticleMap {
                     .map(|nb| (nb.distance, nb.item)),
             );
             if cands.len() >= k || r >= max_dist {
-                cands.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-                for &(dist2, i) in &cands {
-                    let (dir, normal, weight) = self.get(i);
-                    let mut cand = Neighbor {
-                        index: i,
-                        dist2,
-                        dir,
-                        normal,
-                        weight,
-                        contribution: 0.0,
-                    };
-                    let c = contribution(&cand);
-                    if c > 0.0 && c.is_finite() {
-                        cand.contribution = c;
-                        out.push(cand);
-                        if out.len() == k {
-                            return k;
+                // Nearest first (index breaking ties), sorted only as far as needed: each
+                // round brings the next `k - found` nearest to the front and sorts them.
+                let order =
+                    |a: &(f32, u32), b: &(f32, u32)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
+                let mut done = 0;
+                while done < cands.len() {
+                    let end = (done + k - out.len()).min(cands.len());
+                    let partial = end < cands.len();
+                    let rest = &mut cands[done..];
+                    if partial {
+                        rest.select_nth_unstable_by(end - done - 1, order);
+                    }
+                    rest[..end - done].sort_unstable_by(order);
+                    for &(dist2, i) in &cands[done..end] {
+                        let (dir, normal, weight) = self.get(i);
+                        let mut cand = Neighbor {
+                            index: i,
+                            dist2,
+                            dir,
+                            normal,
+                            weight,
+                            contribution: 0.0,
+                        };
+                        let c = contribution(&cand);
+                        if c > 0.0 && c.is_finite() {
+                            cand.contribution = c;
+                            out.push(cand);
+                            if out.len() == k {
+                                return k;
+                            }
                         }
                     }
+                    done = end;
                 }
                 if r >= max_dist {
                     return out.len();
