@@ -977,6 +977,10 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     // ---- Guided pilots, when their maps fit ----
     let mut built: Vec<(String, Guidance)> = Vec::new();
     let guided_start = Instant::now();
+    // Where the pilot's time goes (printed with the choice): the unguided pilot, the guided
+    // pilots' maps and caches, their passes.
+    let unguided_s = start.elapsed().as_secs_f64();
+    let (mut maps_s, mut guided_passes_s) = (0.0f64, 0.0f64);
     // What one guide's maps and pilot took (the estimate for the next guide).
     let mut last_guided: Option<f64> = None;
     // With one map round the particle passes do not depend on the guide: they run once and
@@ -1061,6 +1065,8 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         } else {
             guidance(scene, &o, &|| None)
         };
+        let maps_t = g0.elapsed().as_secs_f64();
+        maps_s += maps_t;
         // Its first passes time the guided combined image as it renders (its halves also
         // carry their MIS densities; it never splits).
         let until = budget.map(|t| Instant::now() + Duration::from_secs_f64(guided_pilot * t));
@@ -1116,6 +1122,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         };
         let (t_pt_g, t_lt_g) = (time(0), time(1));
         last_guided = Some(g0.elapsed().as_secs_f64());
+        guided_passes_s += g0.elapsed().as_secs_f64() - maps_t;
         let secs = [t_c_g, t_pt_g, t_lt_g].map(|t| t * pixel_ratio);
         pilots.push((gname, p, secs, split));
         built.push((gname.to_string(), gd));
@@ -1126,11 +1133,13 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     let unpiloted = guided_count - pilots.len();
     if let (Some(t), true) = (budget, unpiloted > 0 && !pilots.is_empty()) {
         let each = guided_pilot * t * unpiloted as f64 / pilots.len() as f64;
+        let more = Instant::now();
         for ((gname, p, _, _), (_, gd)) in pilots.iter_mut().zip(&built) {
             let until = Instant::now() + Duration::from_secs_f64(each);
             let combined = find("combined", gname);
             pilot_passes(scene, opts, combined, gd, Some(until), 0, 0, p);
         }
+        guided_passes_s += more.elapsed().as_secs_f64();
     }
     // The MIS estimates need the densities the guided paths were drawn with: with
     // unguided weights (--guided-mis off) or per-event guiding (no cache: its MIS
@@ -1258,13 +1267,15 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         .iter()
         .map(|c| format!("{} {:.3e}", c.method, c.predicted))
         .collect();
+    let pilot_s = start.elapsed().as_secs_f64();
     let mut reason = format!(
-        "{} predicted relative MSE {:.3e} at {:.1} s ({}); pilot {} passes",
+        "{} predicted relative MSE {:.3e} at {:.1} s ({}); pilot {} passes; pilot {pilot_s:.2} s: unguided passes {unguided_s:.2} s, maps and caches {maps_s:.2} s, guided passes {guided_passes_s:.2} s, predictions {:.2} s",
         best.method,
         best.predicted,
         time_left,
         others.join(", "),
-        pilot.layers[0].n
+        pilot.layers[0].n,
+        (pilot_s - unguided_s - maps_s - guided_passes_s).max(0.0)
     );
     for c in &all {
         if c.missing > 0.1 * c.predicted && c.missing > 0.0 {
