@@ -910,3 +910,48 @@ fn sparse_photon_maps_grow_within_a_budget() {
         desk.maps.photons
     );
 }
+
+/// A second guide builds its maps from the first's particles (`auto` pilots every guide on
+/// one pair of passes): `Guidance::passes` hands back the very passes the first guide's
+/// maps were built from, so the grid's maps and caches built from them equal those built
+/// from the passes themselves.
+#[test]
+fn a_second_guide_builds_from_the_first_guides_particles() {
+    use footprint_integrators::maps::{Guidance, run_passes};
+    let mut door = load_scene(&scene_path("door")).unwrap();
+    door.maps.photons = 20_000;
+    door.maps.importons = 20_000;
+    let params = footprint::settings::GuideParams::default();
+    let pass = pass_settings(0, 5);
+    let footprint = footprint_integrators::Method::parse("combined-footprint").unwrap();
+    let grid = footprint_integrators::Method::parse("combined-grid").unwrap();
+    let passes = run_passes(&door, &footprint, &params, &pass);
+    let first = Guidance::from_passes(&door, &footprint, &params, passes.clone(), &|| None);
+    let handed = first.passes();
+    assert_eq!(handed.light_time, passes.light_time);
+    assert_eq!(handed.view_time, passes.view_time);
+    let direct = Guidance::from_passes(&door, &grid, &params, passes, &|| None);
+    let second = Guidance::from_passes(&door, &grid, &params, handed, &|| None);
+    for (a, b) in [
+        (&direct.photons, &second.photons),
+        (&direct.importons, &second.importons),
+    ] {
+        let (a, b) = (a.as_ref().unwrap(), b.as_ref().unwrap());
+        assert!(a.map.len() > 1000, "{} particles", a.map.len());
+        assert_eq!(a.map.len(), b.map.len());
+        assert_eq!(a.pass.particles.len(), b.pass.particles.len());
+        for (p, q) in a.pass.particles.iter().zip(&b.pass.particles) {
+            assert_eq!((p.position, p.dir, p.weight), (q.position, q.dir, q.weight));
+        }
+    }
+    for (a, b) in [
+        (&direct.photon_cache, &second.photon_cache),
+        (&direct.importon_cache, &second.importon_cache),
+    ] {
+        let (a, b) = (&a.as_ref().unwrap().stats, &b.as_ref().unwrap().stats);
+        assert_eq!(
+            (a.seeds, a.regions, a.guiding, a.particles),
+            (b.seeds, b.regions, b.guiding, b.particles)
+        );
+    }
+}

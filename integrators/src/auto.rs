@@ -67,7 +67,7 @@
 //!   are compared at the time `N` passes of path tracing take, and the chosen method renders
 //!   `N` passes.
 
-use crate::maps::{Guidance, Passes, run_passes};
+use crate::maps::{Guidance, run_passes};
 use crate::method::Method;
 use crate::moments;
 use crate::render::{
@@ -986,7 +986,6 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     // With one map round the particle passes do not depend on the guide: they run once and
     // every guide builds its maps and caches from them (`passes_s`: what they took).
     let share = scene.maps.rounds <= 1 && !(opts.specialise && !particles_stored(scene));
-    let mut shared: Option<Passes> = None;
     let mut passes_s = 0.0f64;
     // The paper's footprints are piloted first (they measured ahead of the grid in every
     // equal-time cell of door and desk, README): when the budget leaves room for one guide
@@ -1054,14 +1053,21 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         // `lt-footprint` was predicted at 2-3x its error (seeds 1, 4, 5: 1.12, 0.92, 0.80
         // against 0.40, 0.41, 0.40 with its own passes; rendered 0.30-0.47 either way).
         let gd = if share {
-            let passes = shared.get_or_insert_with(|| {
-                let t = Instant::now();
-                let pass = with_target(scene, &o, pass_settings(scene, &o));
-                let p = run_passes(scene, &both, &o.guide_params, &pass);
-                passes_s = t.elapsed().as_secs_f64();
-                p
-            });
-            Guidance::from_passes(scene, &both, &o.guide_params, passes.clone(), &|| None)
+            // The first guide's maps take the passes' particles; a later one copies them
+            // from those maps. Copying them for the first as well cost door (128x128) 0.1 s
+            // and slowed the map builds after it by 0.35 s (2.5-2.8 s of maps and caches
+            // without the copy, 3.0-3.4 s with).
+            let passes = match built.first() {
+                Some((_, first)) => first.passes(),
+                None => {
+                    let t = Instant::now();
+                    let pass = with_target(scene, &o, pass_settings(scene, &o));
+                    let p = run_passes(scene, &both, &o.guide_params, &pass);
+                    passes_s = t.elapsed().as_secs_f64();
+                    p
+                }
+            };
+            Guidance::from_passes(scene, &both, &o.guide_params, passes, &|| None)
         } else {
             guidance(scene, &o, &|| None)
         };

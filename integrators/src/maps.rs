@@ -473,6 +473,18 @@ impl Guidance {
         g
     }
 
+    /// The passes these maps were built from (a copy; no rounds), for another guide to
+    /// build its maps from the same particles.
+    pub fn passes(&self) -> Passes {
+        Passes {
+            light: self.photons.as_ref().map(|b| b.pass.clone()),
+            view: self.importons.as_ref().map(|b| b.pass.clone()),
+            light_time: self.timings.light_pass,
+            view_time: self.timings.view_pass,
+            rounds: Vec::new(),
+        }
+    }
+
     /// The sampler of camera paths (over the photon map).
     pub fn camera_sampler(
         &self,
