@@ -224,3 +224,11 @@ mod atan2_tests {
         assert!(atan2_fast(f32::NAN, 1.0).is_nan());
     }
 }
+
+/// The smallest box holding `points`: `(lo, hi)`; `(+inf, -inf)` for none.
+pub fn bounds(points: impl Iterator<Item = Vec3>) -> (Vec3, Vec3) {
+    points.fold(
+        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(p), hi.max(p)),
+    )
+}

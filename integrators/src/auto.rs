@@ -978,7 +978,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     let mut built: Vec<(String, Guidance)> = Vec::new();
     let guided_start = Instant::now();
     // Where the pilot's time goes (printed with the choice): the unguided pilot, the guided
-    // pilots' maps and caches, their passes.
+    // pilots' particle passes with their maps and caches, the guided pilots' passes.
     let unguided_s = start.elapsed().as_secs_f64();
     let (mut maps_s, mut guided_passes_s) = (0.0f64, 0.0f64);
     // What one guide's maps and pilot took (the estimate for the next guide).
@@ -1055,8 +1055,8 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         let gd = if share {
             // The first guide's maps take the passes' particles; a later one copies them
             // from those maps. Copying them for the first as well cost door (128x128) 0.1 s
-            // and slowed the map builds after it by 0.35 s (2.5-2.8 s of maps and caches
-            // without the copy, 3.0-3.4 s with).
+            // and slowed the map builds after it by 0.35 s (the pilot's particle passes,
+            // maps and caches 2.5-2.8 s without the copy, 3.0-3.4 s with, in one hour).
             let passes = match built.first() {
                 Some((_, first)) => first.passes(),
                 None => {
@@ -1071,8 +1071,8 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         } else {
             guidance(scene, &o, &|| None)
         };
-        let maps_t = g0.elapsed().as_secs_f64();
-        maps_s += maps_t;
+        let guide_maps_s = g0.elapsed().as_secs_f64();
+        maps_s += guide_maps_s;
         // Its first passes time the guided combined image as it renders (its halves also
         // carry their MIS densities; it never splits).
         let until = budget.map(|t| Instant::now() + Duration::from_secs_f64(guided_pilot * t));
@@ -1127,8 +1127,9 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             }
         };
         let (t_pt_g, t_lt_g) = (time(0), time(1));
-        last_guided = Some(g0.elapsed().as_secs_f64());
-        guided_passes_s += g0.elapsed().as_secs_f64() - maps_t;
+        let guide_s = g0.elapsed().as_secs_f64();
+        last_guided = Some(guide_s);
+        guided_passes_s += guide_s - guide_maps_s;
         let secs = [t_c_g, t_pt_g, t_lt_g].map(|t| t * pixel_ratio);
         pilots.push((gname, p, secs, split));
         built.push((gname.to_string(), gd));
@@ -1139,13 +1140,13 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     let unpiloted = guided_count - pilots.len();
     if let (Some(t), true) = (budget, unpiloted > 0 && !pilots.is_empty()) {
         let each = guided_pilot * t * unpiloted as f64 / pilots.len() as f64;
-        let more = Instant::now();
+        let extra_start = Instant::now();
         for ((gname, p, _, _), (_, gd)) in pilots.iter_mut().zip(&built) {
             let until = Instant::now() + Duration::from_secs_f64(each);
             let combined = find("combined", gname);
             pilot_passes(scene, opts, combined, gd, Some(until), 0, 0, p);
         }
-        guided_passes_s += more.elapsed().as_secs_f64();
+        guided_passes_s += extra_start.elapsed().as_secs_f64();
     }
     // The MIS estimates need the densities the guided paths were drawn with: with
     // unguided weights (--guided-mis off) or per-event guiding (no cache: its MIS
@@ -1275,7 +1276,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         .collect();
     let pilot_s = start.elapsed().as_secs_f64();
     let mut reason = format!(
-        "{} predicted relative MSE {:.3e} at {:.1} s ({}); pilot {} passes; pilot {pilot_s:.2} s: unguided passes {unguided_s:.2} s, maps and caches {maps_s:.2} s, guided passes {guided_passes_s:.2} s, predictions {:.2} s",
+        "{} predicted relative MSE {:.3e} at {:.1} s ({}); pilot {} passes; pilot {pilot_s:.2} s: unguided passes {unguided_s:.2} s, particle passes, maps and caches {maps_s:.2} s, guided passes {guided_passes_s:.2} s, predictions {:.2} s",
         best.method,
         best.predicted,
         time_left,

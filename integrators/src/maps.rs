@@ -474,7 +474,9 @@ impl Guidance {
     }
 
     /// The passes these maps were built from (a copy; no rounds), for another guide to
-    /// build its maps from the same particles.
+    /// build its maps from the same particles. Complete only for a method that builds both
+    /// maps (the combined image, as `auto`'s pilot): a pass kept only as the other cache's
+    /// seeds is not held and comes back `None`; a grown photon map gives the grown pass.
     pub fn passes(&self) -> Passes {
         Passes {
             light: self.photons.as_ref().map(|b| b.pass.clone()),

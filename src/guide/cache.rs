@@ -301,10 +301,7 @@ const PARALLEL_SEEDS: usize = 1 << 15;
 /// `parallel_from` seeds are built in parallel and joined in the same order: the tree does
 /// not depend on the threads.
 fn split(seeds: &mut [Seed], max_seeds: usize, max_extent: f32, parallel_from: usize) -> Subtree {
-    let (lo, hi) = seeds.iter().fold(
-        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-        |(lo, hi), s| (lo.min(s.position), hi.max(s.position)),
-    );
+    let (lo, hi) = crate::math::bounds(seeds.iter().map(|s| s.position));
     let ext = hi - lo;
     let axis = if ext.x >= ext.y && ext.x >= ext.z {
         0

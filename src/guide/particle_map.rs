@@ -20,6 +20,7 @@
 //! reported, so the caller can fall back to the BSDF.
 
 use crate::Rgb;
+use crate::math::bounds;
 use glam::{Vec2, Vec3};
 use kiddo::SquaredEuclidean;
 use rayon::prelude::*;
@@ -37,19 +38,13 @@ fn morton3(unit: [f32; 3]) -> u64 {
     spread(unit[0]) | spread(unit[1]) << 1 | spread(unit[2]) << 2
 }
 
-/// The bounds of the particles' positions.
-fn bounds<'a>(particles: impl Iterator<Item = &'a ParticleInput>) -> (Vec3, Vec3) {
-    particles.fold(
-        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-        |(lo, hi), p| (lo.min(p.position), hi.max(p.position)),
-    )
-}
-
 /// The particles in Morton order over the bounds `lo`..`hi` (ties in input order). A map
 /// keeps its particles so: a query's candidates then lie in a few runs of the records
 /// instead of all over them (a pass stores particles in path order), and its tests of
-/// their normals and planes stop waiting on memory (door, both guide caches: their
-/// queries 0.37-0.52 CPU-s in input order, 0.24-0.36 in this order).
+/// their normals and planes stop waiting on memory (door, each guide cache's queries:
+/// 0.37-0.52 CPU-s in input order, 0.24-0.36 in this order). A query breaks ties of
+/// distance by this order's index, so where two candidates lie at exactly the same
+/// distance at the `k`-th place another one may be kept than in input order.
 fn in_spatial_order(particles: &[&ParticleInput], lo: Vec3, hi: Vec3) -> Vec<ParticleInput> {
     let ext = (hi - lo).max(Vec3::splat(f32::MIN_POSITIVE));
     let mut keys: Vec<u64> = particles
@@ -379,15 +374,15 @@ fn decode_dir8(e: [u8; 2]) -> Vec3 {
 }
 
 impl ParticleMap {
-    /// Builds a map; particles with a non-finite or non-positive weight are dropped.
     /// `particles` (all valid: finite positions, positive weights) in the order a map
     /// built from them keeps them: particle `i` of the result is the map's particle `i`
     /// ([`ParticleMap::get`]).
     pub fn spatial_order(particles: &[ParticleInput]) -> Vec<ParticleInput> {
-        let (lo, hi) = bounds(particles.iter());
+        let (lo, hi) = bounds(particles.iter().map(|p| p.position));
         in_spatial_order(&particles.iter().collect::<Vec<_>>(), lo, hi)
     }
 
+    /// Builds a map; particles with a non-finite or non-positive weight are dropped.
     pub fn build(kind: MapKind, particles: &[ParticleInput]) -> Self {
         Self::build_from_depth(kind, particles, 0)
     }
@@ -411,7 +406,7 @@ impl ParticleMap {
             .iter()
             .map(|p| p.weight.max_element())
             .fold(0.0f32, f32::max);
-        let (lo, hi) = bounds(valid.iter().copied());
+        let (lo, hi) = bounds(valid.iter().map(|p| p.position));
         let valid = in_spatial_order(&valid, lo, hi);
         let centre = if valid.is_empty() {
             Vec3::ZERO
@@ -517,7 +512,6 @@ impl ParticleMap {
         let plane = PLANE_FRACTION * max_dist;
         let r2 = max_dist * max_dist;
         let q = x.to_array();
-        // Rules that need no caller: facing the same way, on the same plane.
         let xc = x - self.centre;
         // Rules that need no caller, cheapest first: facing the same way, on the same plane.
         let geometric = |i: u32| -> bool {
