@@ -111,6 +111,12 @@ impl PackedNode {
         }
     }
 
+    /// The split axis (`LEAF` for a leaf) and the right child's or the leaf's index.
+    #[inline]
+    fn decode(self) -> (u32, u32) {
+        (self.link >> INDEX_BITS, self.link & ((1 << INDEX_BITS) - 1))
+    }
+
     fn leaf(index: usize) -> Self {
         assert!(index < 1 << INDEX_BITS, "guide cache tree too large");
         PackedNode {
@@ -243,7 +249,7 @@ impl GuideCache {
         let mut i = 0usize;
         loop {
             let node = *self.nodes.get(i)?;
-            let (axis, index) = (node.link >> INDEX_BITS, node.link & ((1 << INDEX_BITS) - 1));
+            let (axis, index) = node.decode();
             if axis == LEAF {
                 let r = self.leaves[index as usize][normal_bucket(n)];
                 return (r != NONE).then_some(r);
@@ -275,7 +281,7 @@ impl Subtree {
     fn append(&mut self, other: Subtree) {
         let (n0, l0, j0) = (self.nodes.len(), self.leaves.len(), self.jobs.len() as u32);
         self.nodes.extend(other.nodes.into_iter().map(|node| {
-            let (axis, index) = (node.link >> INDEX_BITS, node.link & ((1 << INDEX_BITS) - 1));
+            let (axis, index) = node.decode();
             if axis == LEAF {
                 PackedNode::leaf(l0 + index as usize)
             } else {

@@ -135,14 +135,11 @@ impl Scene {
                 }
             }
         }
-        let mut lo = Vec3::splat(f32::INFINITY);
-        let mut hi = Vec3::splat(f32::NEG_INFINITY);
-        for t in &triangles {
-            for p in [t.p0, t.p0 + t.e1, t.p0 + t.e2] {
-                lo = lo.min(p);
-                hi = hi.max(p);
-            }
-        }
+        let (lo, hi) = crate::math::bounds(
+            triangles
+                .iter()
+                .flat_map(|t| [t.p0, t.p0 + t.e1, t.p0 + t.e2]),
+        );
         // The environment surrounds the scene's bounding sphere (camera included).
         let (blo, bhi) = (lo.min(camera.position), hi.max(camera.position));
         let (center, radius) = (
