@@ -136,6 +136,9 @@ fn a_large_image_is_piloted_at_a_lower_resolution_and_its_maps_guide_the_render(
     eprintln!("{}: {}", c.method.name(), c.reason);
     assert!(c.reason.contains("piloted at 96x80"), "{}", c.reason);
     assert!(c.guidance.is_some(), "the piloted maps are handed on");
+    // Two passes leave no room for the light tracer's importance target at the image's
+    // resolution: the pilot builds it at its own (FULL_TARGET_SHARE).
+    assert!(!c.reason.contains("importance target at"), "{}", c.reason);
     assert!(
         c.candidates
             .iter()
@@ -154,6 +157,35 @@ fn a_large_image_is_piloted_at_a_lower_resolution_and_its_maps_guide_the_render(
     );
     assert_eq!((out.image.width, out.image.height), (w, h));
     assert!(out.image.all_valid() && out.image.mean().min_element() > 0.0);
+}
+
+/// Compared at the time of many passes, the target's four passes at the image's resolution
+/// are a small share of what is left, and the pilot's view pass reads the target at the
+/// image's resolution (the extra time against the horizon: four unguided combined passes
+/// at four times the pixels against 0.08 of 100000 path-tracing passes, a margin of
+/// thousands).
+#[test]
+fn a_long_horizon_builds_the_importance_target_at_the_images_resolution() {
+    let mut scene = load_scene(&common::scene_path("cornell")).unwrap();
+    let (w, h) = (192, 160);
+    scene.camera = scene.camera.with_resolution(w, h).unwrap();
+    scene.maps.photons = 20_000;
+    scene.maps.importons = 20_000;
+    let spec = AutoSpec::new(None, Some(Method::parse("pt-footprint").unwrap()));
+    let o = RenderOptions {
+        spp: 100_000,
+        ..opts()
+    };
+    let c = choose(&scene, &o, &spec);
+    eprintln!("{}: {}", c.method.name(), c.reason);
+    assert!(c.reason.contains("piloted at 96x80"), "{}", c.reason);
+    assert!(
+        c.reason.contains("importance target at 192x160"),
+        "{}",
+        c.reason
+    );
+    let g = c.guidance.expect("the piloted maps are handed on");
+    assert!(g.importons.as_ref().is_some_and(|m| m.map.len() > 0));
 }
 
 /// Every candidate guided (`--integrator auto --guide footprint`) with a sample budget whose

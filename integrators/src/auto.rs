@@ -71,7 +71,7 @@ use crate::maps::{Guidance, run_passes};
 use crate::method::Method;
 use crate::moments;
 use crate::render::{
-    RenderOptions, RenderResult, StopRule, guidance, independent_pass, pass_settings,
+    RenderOptions, RenderResult, StopRule, guidance_with, independent_pass, pass_settings,
     render_prepared, with_target,
 };
 use crate::skips::particles_stored;
@@ -168,11 +168,26 @@ pub const BIAS_BLOCK_SAMPLES: f64 = 64.0;
 /// pilot's pass times are scaled by the ratio of the pixel counts, which leaves the ranking
 /// as measured and predicts each candidate's error at the image's resolution. The maps are
 /// not tied to the resolution (the view pass draws raster positions uniformly over the
-/// image; its importance target is coarser), so a guided winner still reuses them. 64x64
+/// image; its importance target is the image's where the time allows,
+/// [`FULL_TARGET_SHARE`]), so a guided winner still reuses them. 64x64
 /// was tried: door's passes of 4096 pixels took longer per path (a pass's fixed costs), the
 /// footprints' maps were estimated at 5.1 s, over their 30% of 16 s, and `auto` chose
 /// `pt-bsdf` at 3.5x `lt-footprint`'s error.
 pub const PILOT_MAX_PIXELS: usize = 128 * 128;
+/// A pilot at a lower resolution ([`PILOT_MAX_PIXELS`]) builds the view pass's importance
+/// target ([`crate::target`]) at the image's resolution when the extra passes that takes
+/// are predicted at most this share of the rendering time left. The target at the pilot's
+/// resolution is coarser than the image whose relative error it weighs, and maps built
+/// with it guide the light tracer worse per pass: door 256x256, 120 light passes, seeds
+/// 11-13, `lt-footprint` with the pilot's maps 0.379, 0.375, 0.439 against its own maps'
+/// 0.364, 0.383, 0.348 (1.09x on average, so about 8% of the passes are lost); with the
+/// target at the image's resolution, door at 32 s had 0.98-1.03x the fixed method's error
+/// per pass. Its four passes at 256x256 cost door 0.6-1.0 s more than at 128x128. Door
+/// 256x256 against `lt-footprint` (nineteenth session, seeds 1-6 at 16 s, 1-4 at 32 s,
+/// README "Nineteenth session"): at 16 s (0.63 s estimated against 0.83 s) 1.21-1.35x, median
+/// 1.26, where the coarse target read 1.24-1.50x and misranked seed 1 (4.8x); at 32 s
+/// 1.07-1.22x against 1.23-1.30x.
+pub const FULL_TARGET_SHARE: f64 = 0.08;
 
 /// The pilot's resolution for a `width` x `height` image: the image's own up to
 /// [`PILOT_MAX_PIXELS`] pixels, else both sides divided (rounded up) by the least integer
@@ -857,6 +872,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     // ---- A large image is piloted at a lower resolution (PILOT_MAX_PIXELS) ----
     let (image_w, image_h) = (scene.camera.width, scene.camera.height);
     let (pilot_w, pilot_h) = pilot_resolution(image_w, image_h);
+    let image_scene = scene;
     let lower;
     let scene = if (pilot_w, pilot_h) == (image_w, image_h) {
         scene
@@ -975,6 +991,18 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         layer.is_some_and(|c| c.missing > best_at_least)
     };
     // ---- Guided pilots, when their maps fit ----
+    // The view pass's importance target at the image's resolution when its extra passes
+    // (TARGET_PASSES unguided combined passes, the pilot's scaled) fit FULL_TARGET_SHARE of
+    // the least rendering time left.
+    let target_extra = crate::target::TARGET_PASSES as f64 * (secs[0] - t_c);
+    let full_target = pixel_ratio > 1.0 && target_extra <= FULL_TARGET_SHARE * least_left;
+    let target_scene = if full_target { image_scene } else { scene };
+    let mut target_note = full_target.then(|| {
+        format!(
+            "importance target at {image_w}x{image_h}: about {target_extra:.2} s more than at {pilot_w}x{pilot_h}, within {:.0}% of the {least_left:.2} s left",
+            100.0 * FULL_TARGET_SHARE
+        )
+    });
     let mut built: Vec<(String, Guidance)> = Vec::new();
     let guided_start = Instant::now();
     // Where the pilot's time goes (printed with the choice): the unguided pilot, the guided
@@ -1061,7 +1089,10 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
                 Some((_, first)) => first.passes(),
                 None => {
                     let t = Instant::now();
-                    let pass = with_target(scene, &o, pass_settings(scene, &o));
+                    let pass = with_target(target_scene, &o, pass_settings(scene, &o));
+                    if pass.target.is_some() {
+                        notes.extend(target_note.take());
+                    }
                     let p = run_passes(scene, &both, &o.guide_params, &pass);
                     passes_s = t.elapsed().as_secs_f64();
                     p
@@ -1069,7 +1100,11 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             };
             Guidance::from_passes(scene, &both, &o.guide_params, passes, &|| None)
         } else {
-            guidance(scene, &o, &|| None)
+            let pass = with_target(target_scene, &o, pass_settings(scene, &o));
+            if pass.target.is_some() {
+                notes.extend(target_note.take());
+            }
+            guidance_with(scene, &o, &pass, &|| None)
         };
         let guide_maps_s = g0.elapsed().as_secs_f64();
         maps_s += guide_maps_s;

@@ -297,7 +297,7 @@ pub fn view_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> Pa
     let all = crate::specialised!(s.specialisation(scene), F => run_chunks(0..s.paths, |i, out, state| {
         let mut rng = Rng::new(s.seed, DOMAIN_VIEW_PASS, i as u64);
         let raster = rng.uniform2() * size;
-        let w = inv_n * s.target.as_ref().map_or(1.0, |t| t.at(raster));
+        let w = inv_n * s.target.as_ref().map_or(1.0, |t| t.at_raster(raster, size));
         let start = Start {
             origin: cam.position,
             dir: cam.ray_dir(raster),

@@ -267,18 +267,23 @@ pub fn render(scene: &Scene, opts: &RenderOptions, on_progress: impl FnMut(f64))
 /// With a time budget (and `maps.grow`), sparse maps grow within a share of it
 /// ([`Guidance::build_within`]).
 pub fn guidance(scene: &Scene, opts: &RenderOptions, heap: &dyn Fn() -> Option<usize>) -> Guidance {
+    let pass = with_target(scene, opts, pass_settings(scene, opts));
+    guidance_with(scene, opts, &pass, heap)
+}
+
+/// [`guidance`] with the particle passes' settings given (`auto`'s pilot may give the view
+/// pass an importance target of another resolution).
+pub fn guidance_with(
+    scene: &Scene,
+    opts: &RenderOptions,
+    pass: &PassSettings,
+    heap: &dyn Fn() -> Option<usize>,
+) -> Guidance {
     let budget = opts
         .time
         .filter(|_| scene.maps.grow)
         .map(Duration::from_secs_f64);
-    Guidance::build_within(
-        scene,
-        &opts.method,
-        &opts.guide_params,
-        &with_target(scene, opts, pass_settings(scene, opts)),
-        budget,
-        heap,
-    )
+    Guidance::build_within(scene, &opts.method, &opts.guide_params, pass, budget, heap)
 }
 
 /// The particle passes' settings of a render with `opts` (no importance target: see

@@ -84,7 +84,16 @@ impl ImportanceTarget {
         })
     }
 
-    /// The weight of an importon path through `raster` (pixel coordinates).
+    /// The weight of an importon path through `raster`, pixel coordinates of an image of
+    /// `size` pixels (the target's own or another resolution of the same view: `auto`'s
+    /// pilot renders at a lower resolution than the target it may read, [`crate::auto`]).
+    /// At the target's own size the scale is exactly 1, and the pixel is [`Self::at`]'s.
+    #[inline]
+    pub fn at_raster(&self, raster: Vec2, size: Vec2) -> f32 {
+        self.at(raster * (Vec2::new(self.width as f32, self.height as f32) / size))
+    }
+
+    /// The weight of an importon path through `raster` (the target's pixel coordinates).
     #[inline]
     pub fn at(&self, raster: Vec2) -> f32 {
         let x = (raster.x.max(0.0) as u32).min(self.width - 1);
@@ -126,6 +135,12 @@ mod tests {
         assert!((dim - m / (0.01 + 0.1 * m)).abs() < 1e-3, "dim {dim}");
         // Rasters outside the image clamp to its border.
         assert_eq!(t.at(Vec2::new(-3.0, 1e9)), t.at(Vec2::new(0.0, 63.5)));
+        // Read from an image of half the resolution, a raster lands on the same place of
+        // the view: its pixel (4.25, 10.25) is the target's (8.5, 20.5).
+        let half = Vec2::new(32.0, 32.0);
+        assert_eq!(t.at_raster(Vec2::new(4.25, 10.25), half), bright);
+        assert_eq!(t.at_raster(Vec2::new(28.25, 10.25), half), dim);
+        assert_eq!(t.at_raster(Vec2::new(56.5, 20.5), Vec2::splat(64.0)), dim);
         let black = image(8, 8, |_, _| 0.0);
         assert!(ImportanceTarget::from_passes(&[black.clone(), black]).is_none());
     }
