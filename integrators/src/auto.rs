@@ -176,7 +176,8 @@ pub const BIAS_BLOCK_SAMPLES: f64 = 64.0;
 pub const PILOT_MAX_PIXELS: usize = 128 * 128;
 /// A pilot at a lower resolution ([`PILOT_MAX_PIXELS`]) builds the view pass's importance
 /// target ([`crate::target`]) at the image's resolution when the extra passes that takes
-/// are predicted at most this share of the rendering time left. The target at the pilot's
+/// are predicted at most this share of the rendering time left (and the first guide's maps
+/// still fit [`FIRST_GUIDE_MAPS_SHARE`] with them: never at the footprints' cost). The target at the pilot's
 /// resolution is coarser than the image whose relative error it weighs, and maps built
 /// with it guide the light tracer worse per pass: door 256x256, 120 light passes, seeds
 /// 11-13, `lt-footprint` with the pilot's maps 0.379, 0.375, 0.439 against its own maps'
@@ -993,16 +994,12 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     // ---- Guided pilots, when their maps fit ----
     // The view pass's importance target at the image's resolution when its extra passes
     // (TARGET_PASSES unguided combined passes, the pilot's scaled) fit FULL_TARGET_SHARE of
-    // the least rendering time left.
+    // the least rendering time left, and the first guide's maps still fit their share with
+    // them (decided there); else at the pilot's.
     let target_extra = crate::target::TARGET_PASSES as f64 * (secs[0] - t_c);
     let full_target = pixel_ratio > 1.0 && target_extra <= FULL_TARGET_SHARE * least_left;
-    let target_scene = if full_target { image_scene } else { scene };
-    let mut target_note = full_target.then(|| {
-        format!(
-            "importance target at {image_w}x{image_h}: about {target_extra:.2} s more than at {pilot_w}x{pilot_h}, within {:.0}% of the {least_left:.2} s left",
-            100.0 * FULL_TARGET_SHARE
-        )
-    });
+    let mut target_scene = scene;
+    let mut target_note = None;
     let mut built: Vec<(String, Guidance)> = Vec::new();
     let guided_start = Instant::now();
     // Where the pilot's time goes (printed with the choice): the unguided pilot, the guided
@@ -1067,6 +1064,21 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
                 horizon(0.0)
             ));
             continue;
+        }
+        if full_target && last_guided.is_none() {
+            if only_guided || spent + maps_est + target_extra <= maps_share * horizon(0.0) {
+                target_scene = image_scene;
+                target_note = Some(format!(
+                    "importance target at {image_w}x{image_h}: about {target_extra:.2} s more than at {pilot_w}x{pilot_h}, within {:.0}% of the {least_left:.2} s left",
+                    100.0 * FULL_TARGET_SHARE
+                ));
+            } else {
+                notes.push(format!(
+                    "importance target at {pilot_w}x{pilot_h}: at {image_w}x{image_h} ({target_extra:.2} s more) the maps would not fit {:.0}% of {:.2} s",
+                    100.0 * maps_share,
+                    horizon(0.0)
+                ));
+            }
         }
         let g0 = Instant::now();
         let both = find("combined", gname);
