@@ -71,8 +71,8 @@ use crate::maps::{Guidance, run_passes};
 use crate::method::Method;
 use crate::moments;
 use crate::render::{
-    RenderOptions, RenderResult, StopRule, guidance_with, independent_pass, pass_settings,
-    render_prepared, with_target,
+    RenderOptions, RenderResult, StopRule, guidance_with, importance_target, independent_pass,
+    pass_settings, render_prepared, wants_target,
 };
 use crate::skips::particles_stored;
 use footprint::Rgb;
@@ -176,18 +176,20 @@ pub const BIAS_BLOCK_SAMPLES: f64 = 64.0;
 pub const PILOT_MAX_PIXELS: usize = 128 * 128;
 /// A pilot at a lower resolution ([`PILOT_MAX_PIXELS`]) builds the view pass's importance
 /// target ([`crate::target`]) at the image's resolution when the extra passes that takes
-/// are predicted at most this share of the rendering time left (and the first guide's maps
-/// still fit [`FIRST_GUIDE_MAPS_SHARE`] with them: never at the footprints' cost). The target at the pilot's
-/// resolution is coarser than the image whose relative error it weighs, and maps built
-/// with it guide the light tracer worse per pass: door 256x256, 120 light passes, seeds
-/// 11-13, `lt-footprint` with the pilot's maps 0.379, 0.375, 0.439 against its own maps'
-/// 0.364, 0.383, 0.348 (1.09x on average, so about 8% of the passes are lost); with the
-/// target at the image's resolution, door at 32 s had 0.98-1.03x the fixed method's error
-/// per pass. Its four passes at 256x256 cost door 0.6-1.0 s more than at 128x128. Door
-/// 256x256 against `lt-footprint` (nineteenth session, seeds 1-6 at 16 s, 1-4 at 32 s,
-/// README "Nineteenth session"): at 16 s (0.63 s estimated against 0.83 s) 1.21-1.35x, median
-/// 1.26, where the coarse target read 1.24-1.50x and misranked seed 1 (4.8x); at 32 s
-/// 1.07-1.22x against 1.23-1.30x.
+/// are predicted at most this share of the rendering time left, and the first guide's maps
+/// still fit [`FIRST_GUIDE_MAPS_SHARE`] with them (never at the footprints' cost; unless
+/// every candidate is guided, when the maps are piloted whatever they cost). The target at
+/// the pilot's resolution is coarser than the image whose relative error it weighs, and
+/// maps built with it guide the light tracer worse per pass: door 256x256, 120 light
+/// passes, seeds 11-13, `lt-footprint` with the pilot's maps 0.379, 0.375, 0.439 against
+/// its own maps' 0.364, 0.383, 0.348 (1.09x on average, so about 8% of the passes are
+/// lost); with the target at the image's resolution, door at 32 s had 0.98-1.03x the fixed
+/// method's error per pass. Its four passes at 256x256 cost door 0.6-1.0 s more than at
+/// 128x128. Door 256x256 against `lt-footprint` (nineteenth session, README "Nineteenth
+/// session"): at 16 s (0.63 s estimated against 0.83 s) seeds 1-12 read 0.76-1.39x, median
+/// 1.29 (seeds 1-6: 1.21-1.35x where the coarse target read 1.24-1.50x and misranked seed
+/// 1, 4.8x; a later run of seed 1 with the target misranked it too); at 32 s, seeds 1-4,
+/// 1.07-1.22x against 1.23-1.30x; at 64 s, seeds 1-2, 1.17 and 1.03x.
 pub const FULL_TARGET_SHARE: f64 = 0.08;
 
 /// The pilot's resolution for a `width` x `height` image: the image's own up to
@@ -199,6 +201,27 @@ pub fn pilot_resolution(width: u32, height: u32) -> (u32, u32) {
         .find(|&f| pixels(f) <= PILOT_MAX_PIXELS)
         .expect("1x1 fits");
     (width.div_ceil(f), height.div_ceil(f))
+}
+
+/// The pilot's particle passes' settings for `o`: with the importance target rendered from
+/// `target_scene` (the pilot's view or the image's, [`FULL_TARGET_SHARE`]) where `o`'s
+/// method reads one ([`wants_target`]), built at the first call and reused by the next.
+fn pass_with_target(
+    scene: &Scene,
+    target_scene: &Scene,
+    o: &RenderOptions,
+    target: &mut Option<Option<std::sync::Arc<crate::target::ImportanceTarget>>>,
+) -> crate::passes::PassSettings {
+    let pass = pass_settings(scene, o);
+    if !wants_target(o) {
+        return pass;
+    }
+    let built =
+        target.get_or_insert_with(|| importance_target(target_scene, o).map(std::sync::Arc::new));
+    crate::passes::PassSettings {
+        target: built.clone(),
+        ..pass
+    }
 }
 
 /// What `auto` chooses among.
@@ -997,9 +1020,14 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     // the least rendering time left, and the first guide's maps still fit their share with
     // them (decided there); else at the pilot's.
     let target_extra = crate::target::TARGET_PASSES as f64 * (secs[0] - t_c);
-    let full_target = pixel_ratio > 1.0 && target_extra <= FULL_TARGET_SHARE * least_left;
+    let full_target = pixel_ratio > 1.0
+        && opts.guide_params.relative_importance
+        && target_extra <= FULL_TARGET_SHARE * least_left;
     let mut target_scene = scene;
     let mut target_note = None;
+    // The target does not depend on the guide: built once, every guide's view pass reads it
+    // (without shared passes each guide runs its own).
+    let mut target: Option<Option<std::sync::Arc<crate::target::ImportanceTarget>>> = None;
     let mut built: Vec<(String, Guidance)> = Vec::new();
     let guided_start = Instant::now();
     // Where the pilot's time goes (printed with the choice): the unguided pilot, the guided
@@ -1101,10 +1129,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
                 Some((_, first)) => first.passes(),
                 None => {
                     let t = Instant::now();
-                    let pass = with_target(target_scene, &o, pass_settings(scene, &o));
-                    if pass.target.is_some() {
-                        notes.extend(target_note.take());
-                    }
+                    let pass = pass_with_target(scene, target_scene, &o, &mut target);
                     let p = run_passes(scene, &both, &o.guide_params, &pass);
                     passes_s = t.elapsed().as_secs_f64();
                     p
@@ -1112,12 +1137,15 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             };
             Guidance::from_passes(scene, &both, &o.guide_params, passes, &|| None)
         } else {
-            let pass = with_target(target_scene, &o, pass_settings(scene, &o));
-            if pass.target.is_some() {
-                notes.extend(target_note.take());
-            }
+            let pass = pass_with_target(scene, target_scene, &o, &mut target);
             guidance_with(scene, &o, &pass, &|| None)
         };
+        // The note only where the view pass read a target of the image's size.
+        if let Some(Some(t)) = &target
+            && (t.width, t.height) == (image_w, image_h)
+        {
+            notes.extend(target_note.take());
+        }
         let guide_maps_s = g0.elapsed().as_secs_f64();
         maps_s += guide_maps_s;
         // Its first passes time the guided combined image as it renders (its halves also

@@ -300,15 +300,18 @@ pub fn pass_settings(scene: &Scene, opts: &RenderOptions) -> PassSettings {
     }
 }
 
+/// Whether `opts`'s method reads the view pass's relative importance target: it guides
+/// light paths by an importance map, and `relative_importance` is on.
+pub fn wants_target(opts: &RenderOptions) -> bool {
+    let m = &opts.method;
+    opts.guide_params.relative_importance && m.guide.uses_particles() && m.integrator.paths().light
+}
+
 /// `pass` with the view pass's relative importance target ([`importance_target`]) when
 /// `opts`'s method guides light paths by an importance map and `relative_importance` is on.
 pub fn with_target(scene: &Scene, opts: &RenderOptions, pass: PassSettings) -> PassSettings {
-    let m = &opts.method;
-    let wanted = opts.guide_params.relative_importance
-        && m.guide.uses_particles()
-        && m.integrator.paths().light;
     PassSettings {
-        target: wanted
+        target: wants_target(opts)
             .then(|| importance_target(scene, opts))
             .flatten()
             .map(std::sync::Arc::new),

@@ -135,12 +135,23 @@ mod tests {
         assert!((dim - m / (0.01 + 0.1 * m)).abs() < 1e-3, "dim {dim}");
         // Rasters outside the image clamp to its border.
         assert_eq!(t.at(Vec2::new(-3.0, 1e9)), t.at(Vec2::new(0.0, 63.5)));
-        // Read from an image of half the resolution, a raster lands on the same place of
-        // the view: its pixel (4.25, 10.25) is the target's (8.5, 20.5).
-        let half = Vec2::new(32.0, 32.0);
-        assert_eq!(t.at_raster(Vec2::new(4.25, 10.25), half), bright);
-        assert_eq!(t.at_raster(Vec2::new(28.25, 10.25), half), dim);
         assert_eq!(t.at_raster(Vec2::new(56.5, 20.5), Vec2::splat(64.0)), dim);
+        // Read from an image of another resolution (and aspect of pixels), a raster lands
+        // on the same place of the view: a 64x32 target, bright only in its top-left
+        // quarter, read from 16x8 (x and y each scaled by 4) and from 32x4 (by 2 and 8).
+        let quarter = image(64, 32, |x, y| if x < 32 && y < 16 { 1.0 } else { 0.01 });
+        let q = ImportanceTarget::from_passes(&[quarter.clone(), quarter]).unwrap();
+        let (top_left, top_right) = (q.at(Vec2::new(4.5, 4.5)), q.at(Vec2::new(60.5, 4.5)));
+        assert!(top_left < top_right, "{top_left} {top_right}");
+        assert_eq!(q.at(Vec2::new(4.5, 28.5)), top_right);
+        let small = Vec2::new(16.0, 8.0);
+        assert_eq!(q.at_raster(Vec2::new(1.1, 1.1), small), top_left);
+        assert_eq!(q.at_raster(Vec2::new(15.1, 1.1), small), top_right);
+        assert_eq!(q.at_raster(Vec2::new(1.1, 7.1), small), top_right);
+        let wide = Vec2::new(32.0, 4.0);
+        assert_eq!(q.at_raster(Vec2::new(2.2, 0.55), wide), top_left);
+        assert_eq!(q.at_raster(Vec2::new(2.2, 3.55), wide), top_right);
+        assert_eq!(q.at_raster(Vec2::new(30.2, 0.55), wide), top_right);
         let black = image(8, 8, |_, _| 0.0);
         assert!(ImportanceTarget::from_passes(&[black.clone(), black]).is_none());
     }
