@@ -1024,7 +1024,6 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         && opts.guide_params.relative_importance
         && target_extra <= FULL_TARGET_SHARE * least_left;
     let mut target_scene = scene;
-    let mut target_note = None;
     // The target does not depend on the guide: built once, every guide's view pass reads it
     // (without shared passes each guide runs its own).
     let mut target: Option<Option<std::sync::Arc<crate::target::ImportanceTarget>>> = None;
@@ -1096,10 +1095,6 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         if full_target && last_guided.is_none() {
             if only_guided || spent + maps_est + target_extra <= maps_share * horizon(0.0) {
                 target_scene = image_scene;
-                target_note = Some(format!(
-                    "importance target at {image_w}x{image_h}: about {target_extra:.2} s more than at {pilot_w}x{pilot_h}, within {:.0}% of the {least_left:.2} s left",
-                    100.0 * FULL_TARGET_SHARE
-                ));
             } else {
                 notes.push(format!(
                     "importance target at {pilot_w}x{pilot_h}: at {image_w}x{image_h} ({target_extra:.2} s more) the maps would not fit {:.0}% of {:.2} s",
@@ -1140,12 +1135,6 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             let pass = pass_with_target(scene, target_scene, &o, &mut target);
             guidance_with(scene, &o, &pass, &|| None)
         };
-        // The note only where the view pass read a target of the image's size.
-        if let Some(Some(t)) = &target
-            && (t.width, t.height) == (image_w, image_h)
-        {
-            notes.extend(target_note.take());
-        }
         let guide_maps_s = g0.elapsed().as_secs_f64();
         maps_s += guide_maps_s;
         // Its first passes time the guided combined image as it renders (its halves also
@@ -1208,6 +1197,17 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         let secs = [t_c_g, t_pt_g, t_lt_g].map(|t| t * pixel_ratio);
         pilots.push((gname, p, secs, split));
         built.push((gname.to_string(), gd));
+    }
+    // Said where the view pass read a target of the image's size (not only where it was
+    // decided: a method without light paths builds none).
+    if let Some(Some(t)) = &target
+        && pixel_ratio > 1.0
+        && (t.width, t.height) == (image_w, image_h)
+    {
+        notes.push(format!(
+            "importance target at {image_w}x{image_h}: about {target_extra:.2} s more than at {pilot_w}x{pilot_h}, within {:.0}% of the {least_left:.2} s left",
+            100.0 * FULL_TARGET_SHARE
+        ));
     }
     // The pilot time of guides not piloted goes to those piloted: more passes, less noise
     // in their predictions (on Veach Ajar the footprints alone had 8-9 passes, whose
