@@ -1,0 +1,239 @@
+//! The pilot's passes: per-pixel running moments of each layer ([`Moments`]), a pilot's
+//! passes of one combined image dealt to folds ([`Pilot`], [`pilot_passes`]), and the time
+//! of one pass of a method as it renders ([`pass_seconds`]). See the module doc of
+//! [`crate::auto`] for what they measure.
+
+use super::params::{FOLDS, MAX_BATCHES};
+use crate::maps::Guidance;
+use crate::method::Method;
+use crate::moments;
+use crate::render::{
+    RenderOptions, RenderResult, StopRule, importance_target, independent_pass, pass_settings,
+    render_prepared, wants_target,
+};
+use footprint::film::Image;
+use footprint::scene::Scene;
+use std::time::{Duration, Instant};
+
+/// The pilot's particle passes' settings for `o`: with the importance target rendered from
+/// `target_scene` (the pilot's view or the image's,
+/// [`FULL_TARGET_SHARE`](super::FULL_TARGET_SHARE)) where `o`'s method reads one
+/// ([`wants_target`]), built at the first call and reused by the next.
+pub(super) fn pass_with_target(
+    scene: &Scene,
+    target_scene: &Scene,
+    o: &RenderOptions,
+    target: &mut Option<Option<std::sync::Arc<crate::target::ImportanceTarget>>>,
+) -> crate::passes::PassSettings {
+    let pass = pass_settings(scene, o);
+    if !wants_target(o) {
+        return pass;
+    }
+    let built =
+        target.get_or_insert_with(|| importance_target(target_scene, o).map(std::sync::Arc::new));
+    crate::passes::PassSettings {
+        target: built.clone(),
+        ..pass
+    }
+}
+
+/// Per-pixel, per-channel running sums of a layer over pilot passes.
+#[derive(Clone)]
+pub(super) struct Moments {
+    pub(super) sum: Vec<[f64; 3]>,
+    pub(super) sum2: Vec<[f64; 3]>,
+    pub(super) n: usize,
+}
+
+impl Moments {
+    pub(super) fn new(npix: usize) -> Self {
+        Moments {
+            sum: vec![[0.0; 3]; npix],
+            sum2: vec![[0.0; 3]; npix],
+            n: 0,
+        }
+    }
+
+    pub(super) fn add(&mut self, img: &Image) {
+        for ((s, s2), p) in self.sum.iter_mut().zip(&mut self.sum2).zip(&img.pixels) {
+            for c in 0..3 {
+                let x = p[c] as f64;
+                s[c] += x;
+                s2[c] += x * x;
+            }
+        }
+        self.n += 1;
+    }
+
+    /// Adds the passes of `o` (another pilot's estimate of the same image).
+    pub(super) fn pool(&mut self, o: &Moments) {
+        let pairs = self.sum.iter_mut().zip(&mut self.sum2);
+        for ((s, s2), (os, os2)) in pairs.zip(o.sum.iter().zip(&o.sum2)) {
+            for c in 0..3 {
+                s[c] += os[c];
+                s2[c] += os2[c];
+            }
+        }
+        self.n += o.n;
+    }
+
+    /// Takes out the passes of `o` (a part of these).
+    pub(super) fn remove(&mut self, o: &Moments) {
+        let pairs = self.sum.iter_mut().zip(&mut self.sum2);
+        for ((s, s2), (os, os2)) in pairs.zip(o.sum.iter().zip(&o.sum2)) {
+            for c in 0..3 {
+                s[c] -= os[c];
+                s2[c] -= os2[c];
+            }
+        }
+        self.n -= o.n;
+    }
+
+    /// Adds `a - b` pixel by pixel.
+    pub(super) fn add_difference(&mut self, a: &Image, b: &Image) {
+        let pix = a.pixels.iter().zip(&b.pixels);
+        for ((s, s2), (pa, pb)) in self.sum.iter_mut().zip(&mut self.sum2).zip(pix) {
+            for c in 0..3 {
+                let x = pa[c] as f64 - pb[c] as f64;
+                s[c] += x;
+                s2[c] += x * x;
+            }
+        }
+        self.n += 1;
+    }
+
+    pub(super) fn mean(&self, i: usize, c: usize) -> f64 {
+        self.sum[i][c] / self.n as f64
+    }
+
+    /// Per-pass variance (unbiased).
+    pub(super) fn var(&self, i: usize, c: usize) -> f64 {
+        let n = self.n as f64;
+        let m = self.sum[i][c] / n;
+        ((self.sum2[i][c] - n * m * m) / (n - 1.0)).max(0.0)
+    }
+}
+
+/// The pilot's passes of the combined image of `guide` (`bsdf` or a guide with maps):
+/// moments of the combined, pt and lt layers and of the second-moment layers (pt's and lt's
+/// pass times are measured apart, [`pass_seconds`]; the combined image's by the pilot's
+/// first passes, [`TIMED_PASSES`](super::TIMED_PASSES)).
+pub(super) struct Pilot {
+    pub(super) layers: [Moments; 3],
+    /// Moments of each layer less the combined layer of the same pass: the noise of a
+    /// difference of two estimates from the same paths (they are correlated).
+    pub(super) diffs: [Moments; 3],
+    /// The second-moment layers ([`crate::moments::LAYERS`]), their means per pass.
+    pub(super) m2: [Moments; moments::LAYERS.len()],
+    /// The three layers' moments per fold ([`FOLDS`]).
+    pub(super) folds: [[Moments; 3]; FOLDS],
+}
+
+impl Pilot {
+    pub(super) fn new(npix: usize) -> Self {
+        Pilot {
+            layers: std::array::from_fn(|_| Moments::new(npix)),
+            diffs: std::array::from_fn(|_| Moments::new(npix)),
+            m2: std::array::from_fn(|_| Moments::new(npix)),
+            folds: std::array::from_fn(|_| std::array::from_fn(|_| Moments::new(npix))),
+        }
+    }
+
+    /// Passes run so far.
+    pub(super) fn passes(&self) -> usize {
+        self.layers[0].n
+    }
+}
+
+/// Runs pilot passes of `method` into `p` until `until` (at least `min_batches` in all, at
+/// most [`MAX_BATCHES`]); each pass has its own seed, the count so far continuing. The
+/// first `timed` passes render without the second-moment layers, as the method renders,
+/// and time themselves: the fastest one's tracing time is returned (infinite when none
+/// ran), so that the combined image is timed by pilot passes rather than by passes thrown
+/// away (their layers count as any pass's; the second-moment layers hold the other passes).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn pilot_passes(
+    scene: &Scene,
+    opts: &RenderOptions,
+    method: Method,
+    g: &Guidance,
+    until: Option<Instant>,
+    min_batches: usize,
+    timed: usize,
+    p: &mut Pilot,
+) -> f64 {
+    let mut seconds = f64::INFINITY;
+    let first = p.passes();
+    // `min_batches` counts every pass of the pilot: timed passes come first.
+    debug_assert!(timed == 0 || first + timed <= min_batches);
+    for b in passes_until(first, min_batches, until) {
+        let stream = 0xa070_0000_0000_0000 ^ (b as u64 + 1);
+        let plain = b < first + timed;
+        let r = independent_pass(scene, opts, method, g, stream, !plain);
+        if plain {
+            seconds = seconds.min(r.timings.tracing.as_secs_f64());
+        }
+        for (m, (_, img)) in p.layers.iter_mut().zip(&r.layers) {
+            m.add(img);
+        }
+        for (m, (_, img)) in p.folds[b % FOLDS].iter_mut().zip(&r.layers) {
+            m.add(img);
+        }
+        for (m, (_, img)) in p.m2.iter_mut().zip(r.layers.iter().skip(3)) {
+            m.add(img);
+        }
+        let combined = &r.layers[0].1;
+        for (m, (_, img)) in p.diffs.iter_mut().zip(&r.layers) {
+            m.add_difference(img, combined);
+        }
+    }
+    seconds
+}
+
+/// Pass numbers from `first` on, while fewer than `min` or `until` has not come (at most
+/// [`MAX_BATCHES`]): the clock is read before each pass.
+pub(super) fn passes_until(
+    first: usize,
+    min: usize,
+    until: Option<Instant>,
+) -> impl Iterator<Item = usize> {
+    (first..MAX_BATCHES).take_while(move |&b| b < min || until.is_some_and(|u| Instant::now() < u))
+}
+
+/// The time of one pass of `method` (its own path loop, no MIS bookkeeping): the fastest of
+/// `repeat`, since other jobs on the machine only ever slow a pass down.
+pub(super) fn pass_seconds(
+    scene: &Scene,
+    opts: &RenderOptions,
+    method: Method,
+    g: &Guidance,
+    repeat: usize,
+) -> f64 {
+    let o = RenderOptions {
+        method,
+        spp: 1,
+        time: None,
+        passes: crate::PassSelection::ALL,
+        auto: None,
+        ..opts.clone()
+    };
+    (0..repeat)
+        .map(|_| {
+            let r: RenderResult =
+                render_prepared(scene, &o, g, Duration::ZERO, StopRule::HalfPass, |_| {});
+            r.timings.tracing.as_secs_f64()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// An image of `w` x `h` pixels, each pixel `value(i)` in every channel (for the tests).
+#[cfg(test)]
+pub(super) fn test_image(w: usize, h: usize, value: impl Fn(usize) -> f32) -> Image {
+    Image {
+        width: w as u32,
+        height: h as u32,
+        pixels: (0..w * h)
+            .map(|i| footprint::Rgb::splat(value(i)))
+            .collect(),
+    }
+}
