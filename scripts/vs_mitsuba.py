@@ -213,16 +213,19 @@ def cmd_bench(args):
     mi = mitsuba()
     scenes = args.scenes or [
         os.path.join(ROOT, "scenes", "cornell", "mitsuba", "scene.xml"),
-        *([os.path.join(EXT, "cornell-box-bitterli", "scene.xml"), os.path.join(EXT, "veach-ajar", "scene.xml")]
+        *([os.path.join(EXT, "cornell-box-bitterli", "scene.xml"),
+           os.path.join(EXT, "cornell-box-mcguire", "mitsuba", "scene.xml"),
+           os.path.join(EXT, "veach-ajar", "scene.xml")]
           if os.path.isdir(EXT) else []),
     ]
     if not os.path.isdir(EXT):
-        print(f"note: {EXT} is absent: Veach Ajar and Bitterli's Cornell box are skipped")
+        print(f"note: {EXT} is absent: Veach Ajar and both public Cornell boxes are skipped")
     print(f"machine: {os.cpu_count()} logical cores; Mitsuba {mi.__version__} scalar_rgb; footprint release build")
     for xml in scenes:
-        defines = {"resx": args.resx, "resy": args.resy, "max_depth": args.max_depth}
+        # McGuire's box takes one side, `res` (square): the bench's width there.
+        defines = {"resx": args.resx, "resy": args.resy, "res": args.resx, "max_depth": args.max_depth}
         text = open(xml).read()
-        defines = {k: v for k, v in defines.items() if f"${k}" in text}
+        defines = {k: v for k, v in defines.items() if re.search(rf"\${k}\b", text)}
         times = {}
         for rep in range(args.repeat):
             # Russian roulette from Mitsuba's depth (5; footprint's own default is 8): equal

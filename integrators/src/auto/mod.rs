@@ -713,4 +713,31 @@ mod tests {
         ];
         assert!(rival(&grid, &grid[0]).is_none());
     }
+
+    /// Ranking: by prediction, but the best predicted steps aside for the first candidate
+    /// that clears its margins (door's seed-2 predictions: the combined image for the light
+    /// tracer), the others keep their order, and the note names the margin; no note where
+    /// the best predicted clears its margins.
+    #[test]
+    fn the_best_predicted_steps_aside_for_the_first_that_clears_its_margins() {
+        let mut all = vec![
+            candidate("pt-bsdf", 1.0),
+            candidate("lt-footprint", 0.736),
+            candidate("combined-footprint", 0.730),
+            candidate("lt-bsdf", 2.39),
+        ];
+        let note = rank(&mut all).expect("the combined image steps aside");
+        let order: Vec<&str> = all.iter().map(|c| c.method.as_str()).collect();
+        assert_eq!(
+            order,
+            ["lt-footprint", "combined-footprint", "pt-bsdf", "lt-bsdf"]
+        );
+        assert!(
+            note.starts_with("combined-footprint stepped aside") && note.contains("1.3x"),
+            "{note}"
+        );
+        let mut clear = vec![candidate("pt-bsdf", 1.0), candidate("lt-footprint", 0.5)];
+        assert!(rank(&mut clear).is_none());
+        assert_eq!(clear[0].method, "lt-footprint");
+    }
 }
