@@ -34,34 +34,36 @@ pub const GUIDED_MIN_PASS_VARIANCE: f64 = 10.0;
 /// by far more than its prediction says, and a margin against the best unguided method of
 /// either direction chose `pt-bsdf` there (6x behind).
 pub const GUIDED_MARGIN: f64 = 1.3;
-/// A guided combined image is chosen only when predicted better than the better of its own guide's
-/// path and light tracer by this factor (else the next candidate is). Set when the pilot measured
-/// all three unsplit, from the combined image's layers (door 16 s, seed 2: `combined-footprint`
-/// predicted 0.730 and `lt-footprint` 0.736, rendered 0.67-1.31 against 0.30-0.35); kept now that
-/// the splitting directions are piloted as they render ([`SplitPilot`](super::split::SplitPilot)):
-/// on Veach Ajar (30 s) the combined image is still predicted about as good as `pt-footprint`
-/// (seeds 1-3 of the thirteenth session: 0.97x, 1.04x and 1.29x its prediction) where 30-s renders
-/// of the two measure 1.05-1.4x apart in `pt-footprint`'s favour on most seeds; a `compare` run of
-/// seed 2 chose the combined image even so, at 1.24x `pt-footprint`'s error.
+/// A guided combined image is chosen only when predicted better than the better of its own
+/// guide's path and light tracer by this factor (else the next candidate is). Set when the
+/// pilot measured all three unsplit, from the combined image's layers (door 16 s, seed 2:
+/// `combined-footprint` predicted 0.730 and `lt-footprint` 0.736, rendered 0.67-1.31
+/// against 0.30-0.35); kept now that the splitting directions are piloted as they render
+/// ([`SplitPilot`](super::split::SplitPilot)): on Veach Ajar (30 s) the combined image is
+/// still predicted about as good as `pt-footprint` (seeds 1-3 of the thirteenth session:
+/// 0.97x, 1.04x and 1.29x its prediction) where 30-s renders of the two measure 1.05-1.4x
+/// apart in `pt-footprint`'s favour on most seeds; a `compare` run of seed 2 chose the
+/// combined image even so, at 1.24x `pt-footprint`'s error.
 pub const SPLIT_MARGIN: f64 = 1.3;
 /// A guided path or light tracer that splits is piloted with passes of its own
-/// ([`SplitPilot`](super::split::SplitPilot)) for this share of its guide's combined pilot's time
-/// each, and at least [`MIN_SPLIT_PASSES`] of them.
+/// ([`SplitPilot`](super::split::SplitPilot)) for this share of its guide's combined
+/// pilot's time each, and at least [`MIN_SPLIT_PASSES`] of them.
 pub const SPLIT_PILOT_SHARE: f64 = 0.5;
 pub const MIN_SPLIT_PASSES: usize = 3;
 /// Fewest and most pilot passes per set of candidates (the unguided pilot's fewest with
 /// the second-moment layers; [`TIMED_PASSES`] more run before them).
 pub const MIN_BATCHES: usize = 4;
-/// The first passes of each combined pilot render without the second-moment layers, as the combined
-/// image renders, and time it (the fastest of them, [`pilot_passes`](super::pilot::pilot_passes)):
-/// two passes that timed it apart were thrown away (door, 16 s: 0.5 s of a 6.5-s pilot). Their
-/// layers count as every pass's; at least [`MIN_BATCHES`] (unguided) or two (guided) passes with
-/// the second-moment layers follow, and what a candidate's own paths missed is measured on those
-/// (both second-moment layers from the same passes). Two, as other jobs on the machine only slow a
-/// pass down. Veach Ajar at 30 s, seeds 2 and 3, predicted `pt-footprint` 1.08e-2 and 7.7e-3 so,
-/// 1.12e-2 and 7.1e-3 with one timed pass, 1.21e-2 and 8.9e-3 with the timing passes apart (every
-/// pass in the second-moment layers): within what one seed's pilot varies from run to run
-/// (1.1-1.8e-2 on seed 2).
+/// The first passes of each combined pilot render without the second-moment layers, as the
+/// combined image renders, and time it (the fastest of them,
+/// [`pilot_passes`](super::pilot::pilot_passes)): two passes that timed it apart were
+/// thrown away (door, 16 s: 0.5 s of a 6.5-s pilot). Their layers count as every pass's; at
+/// least [`MIN_BATCHES`] (unguided) or two (guided) passes with the second-moment layers
+/// follow, and what a candidate's own paths missed is measured on those (both second-moment
+/// layers from the same passes). Two, as other jobs on the machine only slow a pass down.
+/// Veach Ajar at 30 s, seeds 2 and 3, predicted `pt-footprint` 1.08e-2 and 7.7e-3 so,
+/// 1.12e-2 and 7.1e-3 with one timed pass, 1.21e-2 and 8.9e-3 with the timing passes apart
+/// (every pass in the second-moment layers): within what one seed's pilot varies from run
+/// to run (1.1-1.8e-2 on seed 2).
 pub const TIMED_PASSES: usize = 2;
 pub const MAX_BATCHES: usize = 48;
 /// A time budget shorter than this many passes of pt and lt together leaves no room for a
@@ -75,21 +77,23 @@ pub const FOLDS: usize = 4;
 /// [`measure`](super::predict::measure)).
 pub const BIAS_BLOCK_SAMPLES: f64 = 64.0;
 /// An image of more pixels than this is piloted at a lower resolution
-/// ([`pilot_resolution`](super::pilot_resolution)), the same view through fewer, larger pixels. The
-/// pilot's least passes (six unguided, four guided combined and three split per direction) and the
-/// view pass's importance target render every pixel, so their cost grows with the image while the
-/// budget does not: door at its own 256x256 and 16 s piloted for 11-13 s (its pixels four times
-/// those of the 128x128 at which `auto` was tuned), and `auto`'s error was 2.7-5.4x
-/// `lt-footprint`'s (README "`auto` against the fixed methods"). One pass of a method has about the
-/// same relative variance per pixel at either resolution (one path per pixel, the same paths; a
-/// light pass traces one path per pixel, and each of its splats carries the pixel count's share),
-/// while its time scales with the pixel count: the pilot's pass times are scaled by the ratio of
-/// the pixel counts, which leaves the ranking as measured and predicts each candidate's error at
-/// the image's resolution. The maps are not tied to the resolution (the view pass draws raster
-/// positions uniformly over the image; its importance target is the image's where the time allows,
-/// [`FULL_TARGET_SHARE`]), so a guided winner still reuses them. 64x64 was tried: door's passes of
-/// 4096 pixels took longer per path (a pass's fixed costs), the footprints' maps were estimated at
-/// 5.1 s, over their 30% of 16 s, and `auto` chose `pt-bsdf` at 3.5x `lt-footprint`'s error.
+/// ([`pilot_resolution`](super::pilot_resolution)), the same view through fewer, larger
+/// pixels. The pilot's least passes (six unguided, four guided combined and three split per
+/// direction) and the view pass's importance target render every pixel, so their cost grows
+/// with the image while the budget does not: door at its own 256x256 and 16 s piloted for
+/// 11-13 s (its pixels four times those of the 128x128 at which `auto` was tuned), and
+/// `auto`'s error was 2.7-5.4x `lt-footprint`'s (README "`auto` against the fixed
+/// methods"). One pass of a method has about the same relative variance per pixel at either
+/// resolution (one path per pixel, the same paths; a light pass traces one path per pixel,
+/// and each of its splats carries the pixel count's share), while its time scales with the
+/// pixel count: the pilot's pass times are scaled by the ratio of the pixel counts, which
+/// leaves the ranking as measured and predicts each candidate's error at the image's
+/// resolution. The maps are not tied to the resolution (the view pass draws raster
+/// positions uniformly over the image; its importance target is the image's where the time
+/// allows, [`FULL_TARGET_SHARE`]), so a guided winner still reuses them. 64x64 was tried:
+/// door's passes of 4096 pixels took longer per path (a pass's fixed costs), the
+/// footprints' maps were estimated at 5.1 s, over their 30% of 16 s, and `auto` chose
+/// `pt-bsdf` at 3.5x `lt-footprint`'s error.
 pub const PILOT_MAX_PIXELS: usize = 128 * 128;
 /// A pilot at a lower resolution ([`PILOT_MAX_PIXELS`]) builds the view pass's importance
 /// target ([`crate::target`]) at the image's resolution when the extra passes that takes

@@ -1,41 +1,16 @@
 //! The pilot's passes: per-pixel running moments of each layer ([`Moments`]), a pilot's
-//! passes of one combined image dealt to folds ([`Pilot`], [`pilot_passes`]), and the time
-//! of one pass of a method as it renders ([`pass_seconds`]). See the module doc of
-//! [`crate::auto`] for what they measure.
+//! passes of one combined image dealt to folds ([`Pilot`], [`pilot_passes`]) while its
+//! time lasts ([`passes_until`]), and the time of one pass of a method as it renders
+//! ([`pass_seconds`]). See the module doc of [`crate::auto`] for what they measure.
 
 use super::params::{FOLDS, MAX_BATCHES};
 use crate::maps::Guidance;
 use crate::method::Method;
 use crate::moments;
-use crate::render::{
-    RenderOptions, RenderResult, StopRule, importance_target, independent_pass, pass_settings,
-    render_prepared, wants_target,
-};
+use crate::render::{RenderOptions, RenderResult, StopRule, independent_pass, render_prepared};
 use footprint::film::Image;
 use footprint::scene::Scene;
 use std::time::{Duration, Instant};
-
-/// The pilot's particle passes' settings for `o`: with the importance target rendered from
-/// `target_scene` (the pilot's view or the image's,
-/// [`FULL_TARGET_SHARE`](super::FULL_TARGET_SHARE)) where `o`'s method reads one
-/// ([`wants_target`]), built at the first call and reused by the next.
-pub(super) fn pass_with_target(
-    scene: &Scene,
-    target_scene: &Scene,
-    o: &RenderOptions,
-    target: &mut Option<Option<std::sync::Arc<crate::target::ImportanceTarget>>>,
-) -> crate::passes::PassSettings {
-    let pass = pass_settings(scene, o);
-    if !wants_target(o) {
-        return pass;
-    }
-    let built =
-        target.get_or_insert_with(|| importance_target(target_scene, o).map(std::sync::Arc::new));
-    crate::passes::PassSettings {
-        target: built.clone(),
-        ..pass
-    }
-}
 
 /// Per-pixel, per-channel running sums of a layer over pilot passes.
 #[derive(Clone)]

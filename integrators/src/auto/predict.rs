@@ -1,6 +1,9 @@
-//! What one pilot predicts of its candidates: the per-pass relative variance of the
-//! combined image's three layers (cross-fitted), what their own paths missed, and the light
-//! a direction cannot find ([`measure`]).
+//! What the pilots predict of the candidates ([`Candidate`]): one pilot's per-pass relative
+//! variance of the combined image's three layers (cross-fitted), what their own paths
+//! missed, and the light a direction cannot find ([`measure`], [`can_miss_light`]); and
+//! every pilot weighed with the others' images, the unguided candidates' missed paths seen
+//! from the guided ones and the splitting directions' own passes ([`predict_all`] over
+//! the [`GuidedPilot`]s).
 
 use super::metric::{Metric, Pooled, fold_metrics};
 use super::params::{BIAS_BLOCK_SAMPLES, FOLDS};
@@ -31,7 +34,7 @@ pub struct Candidate {
 impl Candidate {
     /// Sets `predicted` for `time_left` seconds of rendering (infinite for a candidate that
     /// was not timed).
-    pub fn predict_at(&mut self, time_left: f64) {
+    pub(super) fn predict_at(&mut self, time_left: f64) {
         if !self.pass_seconds.is_finite() {
             self.predicted = f64::INFINITY;
             return;
@@ -41,7 +44,8 @@ impl Candidate {
     }
 }
 
-/// Whether `integrator` can miss light in `scene` (see the module doc).
+/// Whether `integrator` can miss light in `scene` ("Missing light" in the module doc of
+/// [`crate::auto`]).
 pub(super) fn can_miss_light(scene: &Scene, integrator: &str) -> Option<&'static str> {
     let e = &scene.effects;
     let specular = e.specular_reflection || e.refraction;
@@ -220,7 +224,8 @@ pub(super) fn predict_all(
         all_pooled.pool(&g.pilot.layers[0]);
     }
     let scale = Metric::mean_luminance(&all_pooled);
-    // Without guided pilots the weights are the unguided pilot's own, as measured above.
+    // Without guided pilots the weights are the unguided pilot's own, as `choose` measured
+    // them (`unguided_alone`).
     let mut all = if pilots.is_empty() {
         unguided_alone
     } else {

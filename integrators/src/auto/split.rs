@@ -45,7 +45,8 @@ impl SplitPilot {
 
     /// The relative variance of one pass, each pixel weighed with the mean of `folds`'
     /// weights (those the unsplit layer's folds are weighed with: the two are compared
-    /// under the same weights, see [`choose`](super::choose)); `None` with fewer than two passes.
+    /// under the same weights, see [`predict_all`](super::predict::predict_all)); `None`
+    /// with fewer than two passes.
     pub(super) fn pass_variance(&self, folds: &[Metric; FOLDS]) -> Option<f64> {
         let m = &self.image;
         if m.n < 2 {
