@@ -396,7 +396,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     let mut last_guided: Option<f64> = None;
     // With one map round the particle passes do not depend on the guide: they run once and
     // every guide builds its maps and caches from them (`passes_s`: what they took).
-    let share = scene.maps.rounds <= 1 && !(opts.specialise && !particles_stored(scene));
+    let share = scene.maps.rounds <= 1 && (!opts.specialise || particles_stored(scene));
     let mut passes_s = 0.0f64;
     // The paper's footprints are piloted first (they measured ahead of the grid in every
     // equal-time cell of door and desk, README): when the budget leaves room for one guide
@@ -634,10 +634,11 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         (pilot_s - unguided_s - maps_s - guided_passes_s).max(0.0)
     );
     for c in &all {
-        if c.missing > 0.1 * c.predicted && c.missing > 0.0 {
-            if let Some(why) = can_miss_light(scene, c.method.split('-').next().unwrap_or("")) {
-                reason += &format!("; {} misses light ({why})", c.method);
-            }
+        if c.missing > 0.1 * c.predicted
+            && c.missing > 0.0
+            && let Some(why) = can_miss_light(scene, c.method.split('-').next().unwrap_or(""))
+        {
+            reason += &format!("; {} misses light ({why})", c.method);
         }
     }
     for n in notes {

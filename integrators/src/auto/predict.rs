@@ -180,7 +180,6 @@ pub(super) struct GuidedPilot {
 /// with its own image as `R`, what they are without guided pilots) and the guided
 /// `pilots`, each weighed as the comments below say; not yet predicted at a time
 /// ([`Candidate::predict_at`]).
-#[allow(clippy::too_many_arguments)]
 pub(super) fn predict_all(
     scene: &Scene,
     params: &GuideParams,
