@@ -310,11 +310,25 @@ pub fn wants_target(opts: &RenderOptions) -> bool {
 /// `pass` with the view pass's relative importance target ([`importance_target`]) when
 /// `opts`'s method guides light paths by an importance map and `relative_importance` is on.
 pub fn with_target(scene: &Scene, opts: &RenderOptions, pass: PassSettings) -> PassSettings {
+    with_built_target(scene, opts, pass, &mut None)
+}
+
+/// [`with_target`], the target rendered from `target_scene` (`auto`'s pilot may read the
+/// image's view from a lower resolution) once into `built` and reused from there by later
+/// calls (every guide's view pass reads the same target).
+pub fn with_built_target(
+    target_scene: &Scene,
+    opts: &RenderOptions,
+    pass: PassSettings,
+    built: &mut Option<Option<std::sync::Arc<crate::target::ImportanceTarget>>>,
+) -> PassSettings {
+    if !wants_target(opts) {
+        return pass;
+    }
+    let target =
+        built.get_or_insert_with(|| importance_target(target_scene, opts).map(std::sync::Arc::new));
     PassSettings {
-        target: wants_target(opts)
-            .then(|| importance_target(scene, opts))
-            .flatten()
-            .map(std::sync::Arc::new),
+        target: target.clone(),
         ..pass
     }
 }

@@ -78,7 +78,7 @@ pub use predict::Candidate;
 
 use crate::maps::{Guidance, run_passes};
 use crate::method::Method;
-use crate::render::{RenderOptions, guidance_with, importance_target, pass_settings, wants_target};
+use crate::render::{RenderOptions, guidance_with, pass_settings, with_built_target};
 use crate::skips::particles_stored;
 use footprint::scene::Scene;
 use footprint::settings::GuideParams;
@@ -97,28 +97,6 @@ pub fn pilot_resolution(width: u32, height: u32) -> (u32, u32) {
         .find(|&f| pixels(f) <= PILOT_MAX_PIXELS)
         .expect("1x1 fits");
     (width.div_ceil(f), height.div_ceil(f))
-}
-
-/// The pilot's particle passes' settings for `o`: with the importance target rendered from
-/// `target_scene` (the pilot's view or the image's,
-/// [`FULL_TARGET_SHARE`]) where `o`'s method reads one
-/// ([`wants_target`]), built at the first call and reused by the next.
-fn pass_with_target(
-    scene: &Scene,
-    target_scene: &Scene,
-    o: &RenderOptions,
-    target: &mut Option<Option<std::sync::Arc<crate::target::ImportanceTarget>>>,
-) -> crate::passes::PassSettings {
-    let pass = pass_settings(scene, o);
-    if !wants_target(o) {
-        return pass;
-    }
-    let built =
-        target.get_or_insert_with(|| importance_target(target_scene, o).map(std::sync::Arc::new));
-    crate::passes::PassSettings {
-        target: built.clone(),
-        ..pass
-    }
 }
 
 /// What `auto` chooses among.
@@ -483,7 +461,8 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
                 Some((_, first)) => first.passes(),
                 None => {
                     let t = Instant::now();
-                    let pass = pass_with_target(scene, target_scene, &o, &mut target);
+                    let pass =
+                        with_built_target(target_scene, &o, pass_settings(scene, &o), &mut target);
                     let p = run_passes(scene, &both, &o.guide_params, &pass);
                     passes_s = t.elapsed().as_secs_f64();
                     p
@@ -491,7 +470,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
             };
             Guidance::from_passes(scene, &both, &o.guide_params, passes, &|| None)
         } else {
-            let pass = pass_with_target(scene, target_scene, &o, &mut target);
+            let pass = with_built_target(target_scene, &o, pass_settings(scene, &o), &mut target);
             guidance_with(scene, &o, &pass, &|| None)
         };
         let guide_maps_s = g0.elapsed().as_secs_f64();
