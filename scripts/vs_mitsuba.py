@@ -221,7 +221,7 @@ def cmd_bench(args):
     if not os.path.isdir(EXT):
         print(f"note: {EXT} is absent: Veach Ajar and both public Cornell boxes are skipped")
     print(f"machine: {os.cpu_count()} logical cores; Mitsuba {mi.__version__} scalar_rgb; footprint release build"
-          f" ({args.sequence or 'default'} numbers)")
+          f" ({args.sequence or 'sobol'} numbers{'' if args.sequence else ', its default'})")
     for xml in scenes:
         # McGuire's box takes one side, `res` (square): the bench's width there.
         defines = {"resx": args.resx, "resy": args.resy, "res": args.resx, "max_depth": args.max_depth}
@@ -431,8 +431,8 @@ def main():
     b.add_argument("--max-depth", type=int, default=8)
     b.add_argument("--repeat", type=int, default=3)
     b.add_argument("--sequence", choices=["sobol", "independent"],
-                   help="footprint's --sequence [default: its default, Sobol; `independent` draws the numbers "
-                        "Mitsuba's `independent` sampler draws]")
+                   help="footprint's --sequence [default: its default, Sobol; `independent`: independent uniform "
+                        "numbers, as Mitsuba's `independent` sampler draws]")
     q = sub.add_parser("compare", help="equal time against Mitsuba's path on Veach Ajar (or SCENE)")
     q.add_argument("only", nargs="*", help="scenes of the table whose name contains one of these words")
     q.add_argument("--time", type=float, default=30.0, help="equal-time budget in seconds")
