@@ -80,16 +80,18 @@ pub(super) struct Metric {
 }
 
 impl Metric {
-    /// The image's mean luminance, what the metric divides by.
-    pub(super) fn mean_luminance(reference: &Moments) -> f64 {
-        let npix = reference.sum.len();
+    /// The image's mean luminance, what the metric divides by, from the passes of `parts`
+    /// (pilots of the same image) pooled alike.
+    pub(super) fn mean_luminance(parts: &[&Moments]) -> f64 {
+        let npix = parts.first().map_or(0, |m| m.sum.len());
+        let n: usize = parts.iter().map(|m| m.n).sum();
         let mut m = Rgb::ZERO;
         for i in 0..npix {
-            m += Rgb::new(
-                reference.mean(i, 0) as f32,
-                reference.mean(i, 1) as f32,
-                reference.mean(i, 2) as f32,
-            );
+            let [r, g, b] = [0, 1, 2].map(|c| {
+                let sum = parts.iter().fold(0.0f64, |s, p| s + p.sum[i][c]);
+                (sum / n as f64) as f32
+            });
+            m += Rgb::new(r, g, b);
         }
         (luminance(m / npix as f32) as f64).max(1e-20)
     }

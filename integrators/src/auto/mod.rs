@@ -290,7 +290,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     let pilot = pilot;
     let t_pt = t_pt1.min(pass_seconds(scene, opts, find("pt", "bsdf"), &unguided, 2));
     let t_lt = t_lt1.min(pass_seconds(scene, opts, find("lt", "bsdf"), &unguided, 2));
-    let reference = pilot.layers[0].clone();
+    let reference = &pilot.layers[0];
     if reference.sum.iter().all(|p| p.iter().all(|x| *x <= 0.0)) {
         return Choice {
             method: spec.candidates[0],
@@ -317,11 +317,11 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     // what they are when no guide is piloted, and how hard the scene is per sample (the
     // relative variance of one pass of the one predicted best).
     let unguided_alone = {
-        let scale = Metric::mean_luminance(&reference);
-        let metric = Metric::with_scale(scene.camera.width, &Pooled::new(&[&reference]), scale);
+        let scale = Metric::mean_luminance(&[reference]);
+        let metric = Metric::with_scale(scene.camera.width, &Pooled::new(&[reference]), scale);
         let folds = fold_metrics(scene.camera.width, &[], &pilot, scale);
         measure(
-            scene, &pilot, &reference, &metric, &folds, true, secs, "bsdf",
+            scene, &pilot, reference, &metric, &folds, true, secs, "bsdf",
         )
     };
     // The wanted unguided candidate predicted best with `time_left` seconds left.
@@ -569,11 +569,11 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     let mut all = predict_all(
         scene,
         &opts.guide_params,
-        &reference,
+        reference,
         &pilot,
         unguided_alone,
         secs,
-        &mut pilots,
+        &pilots,
     );
     // Every candidate predicted at the same time left: what remains after the whole pilot.
     let time_left = horizon(start.elapsed().as_secs_f64());

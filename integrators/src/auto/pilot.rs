@@ -10,6 +10,7 @@ use crate::moments;
 use crate::render::{RenderOptions, RenderResult, StopRule, independent_pass, render_prepared};
 use footprint::film::Image;
 use footprint::scene::Scene;
+use footprint::settings::GuideParams;
 use std::time::{Duration, Instant};
 
 /// Per-pixel, per-channel running sums of a layer over pilot passes.
@@ -30,26 +31,18 @@ impl Moments {
     }
 
     pub(super) fn add(&mut self, img: &Image) {
-        for ((s, s2), p) in self.sum.iter_mut().zip(&mut self.sum2).zip(&img.pixels) {
+        self.add_pass(img.pixels.iter().map(|p| [0, 1, 2].map(|c| p[c] as f64)));
+    }
+
+    /// Adds one pass whose pixels are `values`.
+    fn add_pass(&mut self, values: impl Iterator<Item = [f64; 3]>) {
+        for ((s, s2), x) in self.sum.iter_mut().zip(&mut self.sum2).zip(values) {
             for c in 0..3 {
-                let x = p[c] as f64;
-                s[c] += x;
-                s2[c] += x * x;
+                s[c] += x[c];
+                s2[c] += x[c] * x[c];
             }
         }
         self.n += 1;
-    }
-
-    /// Adds the passes of `o` (another pilot's estimate of the same image).
-    pub(super) fn pool(&mut self, o: &Moments) {
-        let pairs = self.sum.iter_mut().zip(&mut self.sum2);
-        for ((s, s2), (os, os2)) in pairs.zip(o.sum.iter().zip(&o.sum2)) {
-            for c in 0..3 {
-                s[c] += os[c];
-                s2[c] += os2[c];
-            }
-        }
-        self.n += o.n;
     }
 
     /// Takes out the passes of `o` (a part of these).
@@ -67,14 +60,7 @@ impl Moments {
     /// Adds `a - b` pixel by pixel.
     pub(super) fn add_difference(&mut self, a: &Image, b: &Image) {
         let pix = a.pixels.iter().zip(&b.pixels);
-        for ((s, s2), (pa, pb)) in self.sum.iter_mut().zip(&mut self.sum2).zip(pix) {
-            for c in 0..3 {
-                let x = pa[c] as f64 - pb[c] as f64;
-                s[c] += x;
-                s2[c] += x * x;
-            }
-        }
-        self.n += 1;
+        self.add_pass(pix.map(|(pa, pb)| [0, 1, 2].map(|c| pa[c] as f64 - pb[c] as f64)));
     }
 
     pub(super) fn mean(&self, i: usize, c: usize) -> f64 {
@@ -126,6 +112,8 @@ impl Pilot {
 /// and time themselves: the fastest one's tracing time is returned (infinite when none
 /// ran), so that the combined image is timed by pilot passes rather than by passes thrown
 /// away (their layers count as any pass's; the second-moment layers hold the other passes).
+/// A guided pilot renders no second-moment layers where their MIS estimates would read
+/// other densities than its paths were drawn with ([`reads_second_moments`]).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn pilot_passes(
     scene: &Scene,
@@ -141,10 +129,11 @@ pub(super) fn pilot_passes(
     let first = p.passes();
     // `min_batches` counts every pass of the pilot: timed passes come first.
     debug_assert!(timed == 0 || first + timed <= min_batches);
+    let second_moments = reads_second_moments(method, &opts.guide_params);
     for b in passes_until(first, min_batches, until) {
         let stream = 0xa070_0000_0000_0000 ^ (b as u64 + 1);
         let plain = b < first + timed;
-        let r = independent_pass(scene, opts, method, g, stream, !plain);
+        let r = independent_pass(scene, opts, method, g, stream, second_moments && !plain);
         if plain {
             seconds = seconds.min(r.timings.tracing.as_secs_f64());
         }
@@ -163,6 +152,15 @@ pub(super) fn pilot_passes(
         }
     }
     seconds
+}
+
+/// Whether the pilot of `method` has second-moment layers to read. The MIS estimates need
+/// the densities the guided paths were drawn with: with unguided weights (`guided_mis`
+/// off) or per-event guiding (no cache: its MIS densities are the BSDF's) a guided
+/// pilot's layers would read other densities, so it renders none (and what its paths see
+/// of the others' missed paths counts as nothing, as a layer without passes does).
+pub(super) fn reads_second_moments(method: Method, params: &GuideParams) -> bool {
+    !method.guided() || (params.guided_mis && params.cache)
 }
 
 /// Pass numbers from `first` on, while fewer than `min` or `until` has not come (at most
@@ -210,5 +208,43 @@ pub(super) fn test_image(w: usize, h: usize, value: impl Fn(usize) -> f32) -> Im
         pixels: (0..w * h)
             .map(|i| footprint::Rgb::splat(value(i)))
             .collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The unguided pilot always renders its second-moment layers (its own paths' second
+    /// moments are what the others' paths are compared with); a guided pilot only where its
+    /// MIS densities are the ones its paths were drawn with.
+    #[test]
+    fn a_guided_pilot_renders_second_moments_only_with_its_own_densities() {
+        let method = |i: &str, g: &str| Method::from_names(i, g).expect("registered");
+        let on = GuideParams::default();
+        assert!(
+            on.guided_mis && on.cache,
+            "the defaults guide with cached MIS densities"
+        );
+        let no_mis = GuideParams {
+            guided_mis: false,
+            ..on.clone()
+        };
+        let per_event = GuideParams {
+            cache: false,
+            ..on.clone()
+        };
+        for params in [&on, &no_mis, &per_event] {
+            assert!(reads_second_moments(method("combined", "bsdf"), params));
+        }
+        assert!(reads_second_moments(method("combined", "footprint"), &on));
+        assert!(!reads_second_moments(
+            method("combined", "footprint"),
+            &no_mis
+        ));
+        assert!(!reads_second_moments(
+            method("combined", "grid"),
+            &per_event
+        ));
     }
 }

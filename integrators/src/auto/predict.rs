@@ -187,16 +187,8 @@ pub(super) fn predict_all(
     pilot: &Pilot,
     unguided_alone: Vec<Candidate>,
     secs: [f64; 3],
-    pilots: &mut [GuidedPilot],
+    pilots: &[GuidedPilot],
 ) -> Vec<Candidate> {
-    // The MIS estimates need the densities the guided paths were drawn with: with
-    // unguided weights (--guided-mis off) or per-event guiding (no cache: its MIS
-    // densities are the BSDF's) the layers read other densities.
-    if !(params.guided_mis && params.cache) {
-        for g in pilots.iter_mut() {
-            g.pilot.m2 = std::array::from_fn(|_| Moments::new(0));
-        }
-    }
     // The metric's weights `1 / (R² + 0.01)` for each pilot's candidates read `R` from the
     // other pilots' combined images pooled with the pilot's own passes but those of the
     // fold being weighed ([`fold_metrics`]); what exceeds a candidate's own second moment
@@ -218,11 +210,10 @@ pub(super) fn predict_all(
     // One scale for every candidate: the image's mean luminance from every pilot pooled
     // (an image-wide mean, barely correlated with any pilot's per-pixel noise); only the
     // per-pixel weights leave a pilot's own image out.
-    let mut all_pooled = reference.clone();
-    for g in pilots.iter() {
-        all_pooled.pool(&g.pilot.layers[0]);
-    }
-    let scale = Metric::mean_luminance(&all_pooled);
+    let every: Vec<&Moments> = std::iter::once(reference)
+        .chain(pilots.iter().map(|g| &g.pilot.layers[0]))
+        .collect();
+    let scale = Metric::mean_luminance(&every);
     // Without guided pilots the weights are the unguided pilot's own, as `choose` measured
     // them (`unguided_alone`).
     let mut all = if pilots.is_empty() {
