@@ -7,7 +7,7 @@ mod common;
 use footprint::Rgb;
 use footprint::film::Image;
 use footprint::scene::load::load_scene;
-use footprint_integrators::compare::{
+use footprint_app::compare::{
     BUDGET_TOLERANCE, Row, SPOT_FACTOR, log_log_slope, mae, missed, reference, rel_mse,
     slope_points, spots, time_to_reach,
 };

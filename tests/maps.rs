@@ -19,7 +19,7 @@ use footprint::scene::Scene;
 use footprint::scene::geometry::offset_ray_origin;
 use footprint::scene::load::load_scene;
 use footprint_integrators::integrator::path_tracing::radiance_along;
-use footprint_integrators::map_picture::{PICTURE_K, density_picture};
+use footprint_app::map_picture::{PICTURE_K, density_picture};
 use footprint_integrators::passes::{PassSettings, light_pass, view_pass};
 use glam::Vec3;
 use std::path::PathBuf;

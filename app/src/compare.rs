@@ -11,8 +11,8 @@
 //! * spots (the paper's word, fireflies): pixels whose luminance error exceeds
 //!   [`SPOT_FACTOR`] times the reference luminance plus 1% of the reference's mean.
 
-use crate::method::Method;
-use crate::render::{RenderOptions, StopRule, chosen_guidance, guidance, render, render_prepared};
+use footprint_integrators::method::Method;
+use footprint_integrators::render::{RenderOptions, StopRule, chosen_guidance, guidance, render, render_prepared};
 use anyhow::{Context, Result, bail};
 use footprint::film::Image;
 use footprint::film::image_io::{read_exr, write_exr, write_png};
@@ -122,7 +122,7 @@ pub struct Row {
 /// The largest single-sample contribution's share of the image (see [`Row::largest_share`]):
 /// a sample's value is averaged over the passes, so its share of the summed image is
 /// `value / (passes · Σ pixels)`.
-pub fn largest_share(r: &crate::RenderResult) -> f64 {
+pub fn largest_share(r: &footprint_integrators::RenderResult) -> f64 {
     let total = luminance(r.image.mean()) as f64 * r.image.pixels.len() as f64;
     if !(total > 0.0) || r.passes == 0 {
         return 0.0;
@@ -541,14 +541,14 @@ pub fn run(
         // map grows with the budget (`maps.grow`): then every rung builds its own maps for
         // its own budget, as a render of that budget would.
         let g = if opts.auto.is_some() {
-            crate::maps::Guidance::default()
+            footprint_integrators::maps::Guidance::default()
         } else {
             guidance(scene, &opts, &|| None)
         };
-        let per_rung = crate::maps::may_grow(scene, &opts.guide_params)
+        let per_rung = footprint_integrators::maps::may_grow(scene, &opts.guide_params)
             && g.photon_cache
                 .as_ref()
-                .is_some_and(|c| crate::maps::sparse(&c.stats, &opts.guide_params).is_some());
+                .is_some_and(|c| footprint_integrators::maps::sparse(&c.stats, &opts.guide_params).is_some());
         let maps = g.timings.total();
         if v.opts.method.guided() {
             log(&format!(
@@ -578,7 +578,7 @@ pub fn run(
             let r0 = std::time::Instant::now();
             let (r, maps) = match &opts.auto {
                 Some(spec) => {
-                    let choice = crate::auto::choose(scene, &opts, spec);
+                    let choice = footprint_integrators::auto::choose(scene, &opts, spec);
                     log(&format!(
                         "[{run_index}/{total_runs}] {} chose {} ({:.2} s pilot): {}",
                         v.label,

@@ -8,7 +8,7 @@ use footprint::guide::GUIDES;
 use footprint::scene::Scene;
 use footprint::settings::RadiusRule;
 use footprint_integrators::integrator::INTEGRATORS;
-use footprint_integrators::scene_hash::scene_content_hash;
+use footprint_app::scene_hash::scene_content_hash;
 use footprint_integrators::{Method, RenderOptions};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
@@ -724,7 +724,7 @@ fn run(cli: Cli) -> Result<()> {
             if !exposure.is_finite() {
                 bail!("--exposure must be finite");
             }
-            let m = footprint_integrators::merge::merge(&out, &shards)?;
+            let m = footprint_app::merge::merge(&out, &shards)?;
             let png = out.with_extension("png");
             write_png(&png, &m.image, exposure)?;
             println!(
@@ -786,7 +786,7 @@ fn run(cli: Cli) -> Result<()> {
                 .map(|s| s.to_string_lossy().to_string())
                 .unwrap_or("scene".into());
             let out = out.unwrap_or_else(|| PathBuf::from(format!("compare-{stem}")));
-            let settings = footprint_integrators::compare::CompareSettings {
+            let settings = footprint_app::compare::CompareSettings {
                 variants,
                 ladder,
                 reference_spp,
@@ -795,7 +795,7 @@ fn run(cli: Cli) -> Result<()> {
                 seed,
             };
             let start = Instant::now();
-            let rows = footprint_integrators::compare::run(
+            let rows = footprint_app::compare::run(
                 &scene,
                 &mut sc,
                 reference.as_deref(),
@@ -831,7 +831,7 @@ fn run(cli: Cli) -> Result<()> {
                     "warning: {} of {} runs missed their budget (took more than {:.0}% longer, or their maps alone took longer; budget_missed in metrics.csv and metrics.json, red in index.html): {}",
                     missed.len(),
                     rows.len(),
-                    100.0 * footprint_integrators::compare::BUDGET_TOLERANCE,
+                    100.0 * footprint_app::compare::BUDGET_TOLERANCE,
                     missed.join(", ")
                 );
             }
@@ -843,7 +843,7 @@ fn run(cli: Cli) -> Result<()> {
             Ok(())
         }
         Command::Metrics { image, reference } => {
-            use footprint_integrators::compare::{mae, rel_mse, spots};
+            use footprint_app::compare::{mae, rel_mse, spots};
             let x = footprint::film::image_io::read_exr(&image)?;
             let r = footprint::film::image_io::read_exr(&reference)?;
             if (x.width, x.height) != (r.width, r.height) {
@@ -902,8 +902,8 @@ fn compare_variants(
     base: &RenderOptions,
     scene: &Scene,
     sweep: Option<&str>,
-) -> Result<Vec<footprint_integrators::compare::Variant>> {
-    use footprint_integrators::compare::Variant;
+) -> Result<Vec<footprint_app::compare::Variant>> {
+    use footprint_app::compare::Variant;
     let make = |(m, auto): &(Method, Option<footprint_integrators::auto::AutoSpec>),
                 label: String,
                 opts: RenderOptions,
@@ -1002,7 +1002,7 @@ fn maps_command(
     max_depth: Option<u32>,
     seed: Option<u64>,
 ) -> Result<()> {
-    use footprint_integrators::map_picture::{PICTURE_K, density_picture};
+    use footprint_app::map_picture::{PICTURE_K, density_picture};
     use footprint_integrators::maps::{Guidance, run_passes};
     use footprint_integrators::render::{pass_settings, with_target};
     if let Some(out) = out {
@@ -1029,7 +1029,7 @@ fn maps_command(
     );
     let passes = run_passes(scene, &method, params, &pass);
     if let Some((path, hash)) = save {
-        use footprint_integrators::maps_file;
+        use footprint_app::maps_file;
         let key = maps_file::maps_key(
             &hash,
             scene,
@@ -1087,7 +1087,7 @@ fn render_command(
     load_s: f64,
 ) -> Result<()> {
     use footprint_integrators::maps::{Guidance, needed_passes};
-    use footprint_integrators::merge;
+    use footprint_app::merge;
     if out.extension().and_then(|e| e.to_str()) != Some("exr") {
         bail!("--out must name an .exr file, got {}", out.display());
     }
@@ -1171,14 +1171,14 @@ fn render_command(
     }
     let guidance = match maps_file.filter(|_| opts.method.guided() && piloted.is_none()) {
         Some(path) => {
-            let key = footprint_integrators::maps_file::maps_key(
+            let key = footprint_app::maps_file::maps_key(
                 &scene_hash,
                 scene,
                 opts.max_depth,
                 opts.seed,
                 opts.guide_params.relative_importance,
             );
-            let passes = footprint_integrators::maps_file::load(path, &key)?;
+            let passes = footprint_app::maps_file::load(path, &key)?;
             let (light, view) = needed_passes(&opts.method, &opts.guide_params);
             if (light && passes.light.is_none()) || (view && passes.view.is_none()) {
                 bail!(

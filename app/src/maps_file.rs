@@ -2,7 +2,7 @@
 //!
 //! The file holds what is expensive, the passes' output ([`Passes`]: every particle with
 //! its record, the emission points, the pass statistics), not the kd-trees and guide caches:
-//! those are rebuilt on load by [`crate::maps::Guidance::from_passes`], deterministically, in
+//! those are rebuilt on load by [`footprint_integrators::maps::Guidance::from_passes`], deterministically, in
 //! a second or two (the cache builds dominate), so a render with loaded maps is the same
 //! image as one that ran the passes itself.
 //!
@@ -23,8 +23,8 @@
 //! its particles (count u64; position, direction, normal, weight as 3 x f32 each, depth
 //! u16, specular chain u8) and its emission points (count u64; position, normal 3 x f32).
 
-use crate::maps::Passes;
-use crate::passes::{PassOutput, PassStats};
+use footprint_integrators::maps::Passes;
+use footprint_integrators::passes::{PassOutput, PassStats};
 use anyhow::{Result, bail};
 use footprint::Rgb;
 use footprint::guide::cache::Seed;

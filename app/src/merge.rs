@@ -1,5 +1,5 @@
 //! `footprint merge OUT.exr SHARD.exr ...`: the image of one run from the images of its
-//! shards ([`crate::shard`]).
+//! shards ([`footprint_integrators::shard`]).
 //!
 //! Every layer of a render is the mean of its passes, and a shard's `footprint/spp` says how
 //! many passes it holds, so the merged layer is `Σ n_s · image_s / Σ n_s` (in f64): the
@@ -9,8 +9,8 @@
 //! what differs, or which shards are missing. The result is written whole or not at all,
 //! with the header of an unsharded render (`footprint/shard` = `0/1`).
 
-use crate::render::RenderOptions;
-use crate::shard::PassSelection;
+use footprint_integrators::render::RenderOptions;
+use footprint_integrators::shard::PassSelection;
 use anyhow::{Context, Result, bail};
 use footprint::film::Image;
 use footprint::film::image_io::{ExrHeader, read_exr_header, read_exr_layers, write_exr};
