@@ -9,6 +9,8 @@
 //! * [`bsdf`]: materials and their lobes, Fresnel terms, microfacet distributions, plastic;
 //! * [`guide`]: the particle maps, the guides (BSDF, grid, footprints), the guide cache and
 //!   the direction sampler both kinds of paths use;
+//! * [`features`]: the effects a path loop is compiled for, `const` flags that compile an
+//!   absent effect out of the path loop, the BSDF and the direction sampler;
 //! * [`film`]: the film, pixel filters and image files;
 //! * [`settings`]: what a scene file's `[render]`, `[maps]` and `[guide]` tables hold;
 //! * foundations: [`math`], [`sampling`] (warps and discrete distributions), [`rng`],
@@ -20,6 +22,7 @@
 pub mod atomic_file;
 pub mod bsdf;
 pub mod error;
+pub mod features;
 pub mod film;
 pub mod guide;
 pub mod heap;

@@ -19,6 +19,7 @@
 
 use crate::Rgb;
 use crate::bsdf::{Bsdf, TransportMode};
+use crate::features::{Features, General};
 use crate::guide::cache::{GuideCache, Region, RegionDistribution};
 use crate::guide::grid::GridDistribution;
 use crate::guide::particle_map::{Neighbor, ParticleMap};
@@ -26,7 +27,6 @@ use crate::guide::selection::SelectionLearner;
 use crate::guide::{ChannelMix, Guide, GuideDistribution, GuideParticle, guides_at};
 use crate::math::{Frame, is_valid_rgb, luminance};
 use crate::rng::Rng;
-use crate::scene::features::{Features, General};
 use crate::settings::GuideParams;
 use glam::Vec3;
 

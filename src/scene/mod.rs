@@ -19,11 +19,11 @@ pub mod toml_file;
 
 use crate::bsdf::material::{Material, MaterialKind};
 use crate::bsdf::{Bsdf, Lobes, SurfaceLobes};
+use crate::features::{Features, General};
 use crate::sampling::Distribution1D;
 use crate::scene::accel::Accel;
 use crate::scene::camera::Camera;
 use crate::scene::effects::Effects;
-use crate::scene::features::{Features, General};
 use crate::scene::geometry::{
     SurfaceHit, TriangleGeom, TriangleShading, offset_ray_origin, spawn_origin,
 };

@@ -1,0 +1,464 @@
+//! A BSDF at one surface point: the lobes in a shading frame, with the surface's sidedness
+//! and the adjoint correction of shading normals; evaluation, density and sampling (the
+//! conventions: [`crate::bsdf`]).
+
+use crate::bsdf::blinn::blinn_sample;
+use crate::bsdf::fresnel::{fresnel_conductor, fresnel_dielectric};
+use crate::bsdf::lobes::{Lobes, SurfaceLobes, reflect, specular_probability};
+use crate::features::{Features, General};
+use crate::math::{Frame, INV_PI, Rgb, safe_sqrt};
+use crate::rng::Rng;
+use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
+use glam::{Vec2, Vec3};
+
+/// Which quantity a path carries: radiance (paths from the camera) or importance (paths
+/// from the lights).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TransportMode {
+    Radiance,
+    Importance,
+}
+
+/// A sampled direction.
+#[derive(Clone, Copy, Debug)]
+pub struct BsdfSample {
+    /// Sampled direction, world space, unit.
+    pub wi: Vec3,
+    /// `f(wo, wi)` (for a delta lobe, the delta's coefficient).
+    pub f: Rgb,
+    /// Density per steradian of `wi` (for a delta lobe, the discrete probability of the lobe).
+    pub pdf_w: f32,
+    /// `f · |wi·n_s| / pdf_w`, including the importance-mode shading-normal correction.
+    pub weight: Rgb,
+    /// True when `wi` came from a delta lobe (mirror, smooth glass, the coat of smooth
+    /// plastic): a BSDF may mix delta and non-delta lobes, so this is per sample.
+    pub delta: bool,
+}
+
+/// A BSDF at one surface point: lobes, shading frame and geometric normal.
+#[derive(Clone, Copy, Debug)]
+pub struct Bsdf {
+    pub lobes: Lobes,
+    /// Shading frame; `z` is the shading normal on the side of `ng`.
+    pub frame: Frame,
+    /// Geometric normal, unit.
+    pub ng: Vec3,
+    /// False: the reflecting kinds are black seen from below the shading normal.
+    pub two_sided: bool,
+}
+
+impl Bsdf {
+    /// A BSDF with shading normal `ns` and geometric normal `ng` (both unit, same side);
+    /// `lobes` is a [`SurfaceLobes`] or a bare (two-sided) [`Lobes`].
+    pub fn new(lobes: impl Into<SurfaceLobes>, ns: Vec3, ng: Vec3) -> Self {
+        let SurfaceLobes { lobes, two_sided } = lobes.into();
+        Bsdf {
+            lobes,
+            frame: Frame::from_z(ns),
+            ng,
+            two_sided,
+        }
+    }
+
+    pub fn is_delta(&self) -> bool {
+        self.lobes.is_delta()
+    }
+
+    /// `|wo·n_s| |wi·n_g| / (|wo·n_g| |wi·n_s|)` in importance mode, 1 in radiance mode.
+    #[inline]
+    fn adjoint_correction(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
+        if mode == TransportMode::Radiance {
+            return 1.0;
+        }
+        let ns = self.frame.z;
+        let num = wo.dot(ns).abs() * wi.dot(self.ng).abs();
+        let den = wo.dot(self.ng).abs() * wi.dot(ns).abs();
+        if den <= 0.0 || !num.is_finite() {
+            return 0.0;
+        }
+        num / den
+    }
+
+    /// [`Bsdf::adjoint_correction`] compiled for the effects `F`. Without shading normals the
+    /// frame's normal is the geometric one (bit for bit: `surface_hit_with` and the emission
+    /// lobe pass `ng` as `ns`), so the general form's numerator and denominator are the same
+    /// product `|wo·n_g| |wi·n_g|`, and its quotient is exactly 1 wherever it divides: the
+    /// same value, without two of the four dot products and the division.
+    #[inline]
+    fn adjoint_correction_with<F: Features>(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
+        if F::SHADING_NORMALS {
+            return self.adjoint_correction(wo, wi, mode);
+        }
+        if mode == TransportMode::Radiance {
+            return 1.0;
+        }
+        debug_assert!(
+            self.frame.z.to_array().map(f32::to_bits) == self.ng.to_array().map(f32::to_bits),
+            "a shading normal in a loop compiled without them"
+        );
+        let den = wo.dot(self.ng).abs() * wi.dot(self.ng).abs();
+        if den > 0.0 && den.is_finite() {
+            1.0
+        } else {
+            0.0
+        }
+    }
+
+    /// The side the reflecting kinds work on for `wo`: -1 when a two-sided surface is seen
+    /// from below its geometric normal (the local frame is flipped), else 1.
+    #[inline]
+    fn reflection_side(&self, wo: Vec3) -> f32 {
+        if self.two_sided && wo.dot(self.ng) < 0.0 {
+            -1.0
+        } else {
+            1.0
+        }
+    }
+
+    /// Local directions of a reflection, flipped to the upper side on two-sided surfaces.
+    /// Returns `None` when `wo` and `wi` are not both on the same geometric side (no
+    /// reflection through a surface) or not both above the (flipped) shading horizon.
+    #[inline]
+    fn reflection_local(&self, wo: Vec3, wi: Vec3) -> Option<(Vec3, Vec3)> {
+        if wo.dot(self.ng) * wi.dot(self.ng) <= 0.0 {
+            return None;
+        }
+        let side = self.reflection_side(wo);
+        let mut lo = self.frame.to_local(wo);
+        let mut li = self.frame.to_local(wi);
+        lo.z *= side;
+        li.z *= side;
+        if lo.z <= 0.0 || li.z <= 0.0 {
+            return None;
+        }
+        Some((lo, li))
+    }
+
+    /// The numbers [`Bsdf::sample`] reads, drawn from `rng` in a fixed order: the direction's
+    /// pair first, then the lobe's number only where the BSDF has a choice of lobes (0
+    /// otherwise, unread). A Lambertian vertex thus draws two numbers, and its direction keeps
+    /// the same dimensions of the sequence whatever the other vertices' materials.
+    #[inline]
+    pub fn draw_numbers(&self, rng: &mut Rng) -> (f32, Vec2) {
+        let u = rng.uniform2();
+        let u_lobe = if self.lobes.chooses_a_lobe() {
+            rng.uniform()
+        } else {
+            0.0
+        };
+        (u_lobe, u)
+    }
+
+    /// True when every lobe is a delta distribution, compiled for the effects `F` (false
+    /// without specular surfaces).
+    #[inline]
+    pub fn is_delta_with<F: Features>(&self) -> bool {
+        F::SPECULAR && self.lobes.is_delta()
+    }
+
+    /// The Lambertian fast path's cosines: `(lo.z, li.z)` of [`Bsdf::reflection_local`],
+    /// each the same dot product the frame transform makes, without the tangential parts
+    /// the Lambertian lobe does not read.
+    #[inline]
+    fn lambert_cosines(&self, wo: Vec3, wi: Vec3) -> Option<(f32, f32)> {
+        if wo.dot(self.ng) * wi.dot(self.ng) <= 0.0 {
+            return None;
+        }
+        let side = self.reflection_side(wo);
+        let (lo, li) = (wo.dot(self.frame.z) * side, wi.dot(self.frame.z) * side);
+        if lo <= 0.0 || li <= 0.0 {
+            return None;
+        }
+        Some((lo, li))
+    }
+
+    /// `f(wo, wi)`; zero for delta lobes.
+    pub fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+        self.eval_with::<General>(wo, wi, mode)
+    }
+
+    /// [`Bsdf::eval`] compiled for the effects `F`.
+    #[inline]
+    pub fn eval_with<F: Features>(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+        if F::LAMBERTIAN {
+            if let Lobes::Diffuse { kd } = self.lobes {
+                return match self.lambert_cosines(wo, wi) {
+                    Some(_) => kd * INV_PI * self.adjoint_correction_with::<F>(wo, wi, mode),
+                    None => Rgb::ZERO,
+                };
+            }
+        }
+        if self.is_delta_with::<F>() {
+            return Rgb::ZERO;
+        }
+        let f = match self.reflection_local(wo, wi) {
+            Some((lo, li)) => self.lobes.eval_local(lo, li),
+            None => return Rgb::ZERO,
+        };
+        f * self.adjoint_correction_with::<F>(wo, wi, mode)
+    }
+
+    /// `f(wo, wi)` ([`Bsdf::eval_with`]) and, where it comes at no extra cost, the density
+    /// [`Bsdf::pdf_with`] of `wi`: the Lambertian fast path reads both from one set of
+    /// cosines (the very values the two calls compute); elsewhere the density is left to be
+    /// computed where it is needed (`None`). Always inlined: without the fast path it is
+    /// [`Bsdf::eval_with`] itself.
+    #[inline(always)]
+    pub fn eval_and_lambert_pdf_with<F: Features>(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        mode: TransportMode,
+    ) -> (Rgb, Option<f32>) {
+        if F::LAMBERTIAN {
+            if let Lobes::Diffuse { kd } = self.lobes {
+                return match self.lambert_cosines(wo, wi) {
+                    Some((_, li)) => (
+                        kd * INV_PI * self.adjoint_correction_with::<F>(wo, wi, mode),
+                        Some(cosine_hemisphere_pdf(li)),
+                    ),
+                    None => (Rgb::ZERO, Some(0.0)),
+                };
+            }
+        }
+        (self.eval_with::<F>(wo, wi, mode), None)
+    }
+
+    /// Density per steradian with which [`Bsdf::sample`] returns `wi` from its non-delta
+    /// lobes (times their probability); zero for delta lobes.
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        self.pdf_with::<General>(wo, wi)
+    }
+
+    /// [`Bsdf::pdf`] compiled for the effects `F`.
+    #[inline]
+    pub fn pdf_with<F: Features>(&self, wo: Vec3, wi: Vec3) -> f32 {
+        if F::LAMBERTIAN {
+            if let Lobes::Diffuse { .. } = self.lobes {
+                return match self.lambert_cosines(wo, wi) {
+                    Some((_, li)) => cosine_hemisphere_pdf(li),
+                    None => 0.0,
+                };
+            }
+        }
+        if self.is_delta_with::<F>() {
+            return 0.0;
+        }
+        match self.reflection_local(wo, wi) {
+            Some((lo, li)) => self.lobes.pdf_local(lo, li),
+            None => 0.0,
+        }
+    }
+
+    /// A delta sample in local direction `li` (already flipped by `side`) of coefficient
+    /// `weight` (`f · cos / prob`) and discrete probability `prob`.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn delta_sample(
+        &self,
+        wo: Vec3,
+        li: Vec3,
+        side: f32,
+        weight: Rgb,
+        prob: f32,
+        mode: TransportMode,
+        transmitted: bool,
+    ) -> Option<BsdfSample> {
+        let wi = self.frame.to_world(Vec3::new(li.x, li.y, li.z * side));
+        let crosses = wi.dot(self.ng) * wo.dot(self.ng);
+        if (transmitted && crosses >= 0.0) || (!transmitted && crosses <= 0.0) {
+            return None;
+        }
+        let corr = self.adjoint_correction(wo, wi, mode);
+        Some(BsdfSample {
+            wi,
+            f: weight * (prob * corr / li.z.abs()),
+            pdf_w: prob,
+            weight: weight * corr,
+            delta: true,
+        })
+    }
+
+    /// Samples `wi` given `wo`, with one number to choose a lobe and two for the direction.
+    pub fn sample(
+        &self,
+        wo: Vec3,
+        u_lobe: f32,
+        u: Vec2,
+        mode: TransportMode,
+    ) -> Option<BsdfSample> {
+        self.sample_with::<General>(wo, u_lobe, u, mode)
+    }
+
+    /// [`Bsdf::sample`] compiled for the effects `F`: the Lambertian fast path evaluates
+    /// `f` and the pdf from one set of cosines (the same operations as the general path).
+    #[inline]
+    pub fn sample_with<F: Features>(
+        &self,
+        wo: Vec3,
+        u_lobe: f32,
+        u: Vec2,
+        mode: TransportMode,
+    ) -> Option<BsdfSample> {
+        if F::LAMBERTIAN {
+            if let Lobes::Diffuse { kd } = self.lobes {
+                let side = self.reflection_side(wo);
+                if wo.dot(self.frame.z) * side <= 0.0 {
+                    return None;
+                }
+                let li = sample_cosine_hemisphere(u);
+                if li.z <= 0.0 {
+                    return None;
+                }
+                let wi = self.frame.to_world(Vec3::new(li.x, li.y, li.z * side));
+                let (_, cos_i) = self.lambert_cosines(wo, wi)?;
+                let pdf_w = cosine_hemisphere_pdf(cos_i);
+                let f = kd * INV_PI * self.adjoint_correction_with::<F>(wo, wi, mode);
+                if pdf_w <= 0.0 || !pdf_w.is_finite() || f.max_element() <= 0.0 {
+                    return None;
+                }
+                let weight = f * (wi.dot(self.frame.z).abs() / pdf_w);
+                return Some(BsdfSample {
+                    wi,
+                    f,
+                    pdf_w,
+                    weight,
+                    delta: false,
+                });
+            }
+        }
+        self.sample_general(wo, u_lobe, u, mode)
+    }
+
+    fn sample_general(
+        &self,
+        wo: Vec3,
+        u_lobe: f32,
+        u: Vec2,
+        mode: TransportMode,
+    ) -> Option<BsdfSample> {
+        // The frame is flipped to wo's side for the transmitting kinds and for two-sided
+        // reflection; a one-sided surface seen from below scatters nothing.
+        let side = if self.lobes.transmits() {
+            if wo.dot(self.ng) >= 0.0 { 1.0 } else { -1.0 }
+        } else {
+            self.reflection_side(wo)
+        };
+        let mut lo = self.frame.to_local(wo);
+        lo.z *= side;
+        if lo.z <= 0.0 {
+            return None;
+        }
+        let mirror = Vec3::new(-lo.x, -lo.y, lo.z);
+        let li = match self.lobes {
+            Lobes::Diffuse { .. } => sample_cosine_hemisphere(u),
+            Lobes::Glossy {
+                exponent, p_glossy, ..
+            } => {
+                if u_lobe < p_glossy {
+                    blinn_sample(exponent, lo, u)?
+                } else {
+                    sample_cosine_hemisphere(u)
+                }
+            }
+            Lobes::RoughConductor { distr, .. } => reflect(lo, distr.sample_visible(lo, u)),
+            Lobes::Plastic {
+                ks,
+                eta,
+                spec_weight,
+                ..
+            } => {
+                let fi = fresnel_dielectric(lo.z, eta);
+                let ps = specular_probability(fi, spec_weight);
+                if u_lobe < ps {
+                    return self.delta_sample(wo, mirror, side, ks * (fi / ps), ps, mode, false);
+                }
+                sample_cosine_hemisphere(u)
+            }
+            Lobes::RoughPlastic {
+                spec_weight,
+                distr,
+                tables,
+                ..
+            } => {
+                let ps = specular_probability(1.0 - tables.transmittance(lo.z), spec_weight);
+                if u_lobe < ps {
+                    reflect(lo, distr.sample_visible(lo, u))
+                } else {
+                    sample_cosine_hemisphere(u)
+                }
+            }
+            Lobes::Mirror { r } => return self.delta_sample(wo, mirror, side, r, 1.0, mode, false),
+            Lobes::Conductor { ks, eta, k } => {
+                let w = ks * fresnel_conductor(lo.z, eta, k);
+                return self.delta_sample(wo, mirror, side, w, 1.0, mode, false);
+            }
+            Lobes::ThinGlass { eta, ks, tf } => {
+                // Reflectance with the sheet's inner reflections summed: R + T²R/(1 - R²).
+                let r = fresnel_dielectric(lo.z, eta);
+                let r = if r < 1.0 { 2.0 * r / (1.0 + r) } else { 1.0 };
+                return if u_lobe < r {
+                    self.delta_sample(wo, mirror, side, ks, r, mode, false)
+                } else {
+                    self.delta_sample(wo, -lo, side, tf, 1.0 - r, mode, true)
+                };
+            }
+            Lobes::Glass { eta, tf_sqrt } => {
+                return self.sample_glass(wo, lo, side, eta, tf_sqrt, u_lobe, mode);
+            }
+        };
+        if li.z <= 0.0 {
+            return None;
+        }
+        let wi = self.frame.to_world(Vec3::new(li.x, li.y, li.z * side));
+        let pdf_w = self.pdf(wo, wi);
+        let f = self.eval(wo, wi, mode);
+        if pdf_w <= 0.0 || !pdf_w.is_finite() || f.max_element() <= 0.0 {
+            return None;
+        }
+        let weight = f * (wi.dot(self.frame.z).abs() / pdf_w);
+        Some(BsdfSample {
+            wi,
+            f,
+            pdf_w,
+            weight,
+            delta: false,
+        })
+    }
+
+    /// The smooth dielectric: Fresnel reflection or refraction, `lo` on the incident side.
+    #[allow(clippy::too_many_arguments)]
+    fn sample_glass(
+        &self,
+        wo: Vec3,
+        lo: Vec3,
+        side: f32,
+        eta: f32,
+        tf_sqrt: Rgb,
+        u_lobe: f32,
+        mode: TransportMode,
+    ) -> Option<BsdfSample> {
+        // Entering when wo is on the side the geometric normal points to.
+        let entering = side > 0.0;
+        let eta_rel = if entering { eta } else { 1.0 / eta };
+        let fr = fresnel_dielectric(lo.z, eta_rel);
+        if u_lobe < fr {
+            let li = Vec3::new(-lo.x, -lo.y, lo.z);
+            return self.delta_sample(wo, li, side, Rgb::ONE, fr, mode, false);
+        }
+        // Refraction about the local normal (+z), incident direction -lo.
+        let cos_i = lo.z;
+        let sin2_t = (1.0 - cos_i * cos_i) / (eta_rel * eta_rel);
+        if sin2_t >= 1.0 {
+            return None; // fr = 1 here; unreachable in exact arithmetic
+        }
+        let cos_t = safe_sqrt(1.0 - sin2_t);
+        let li = (-lo / eta_rel + Vec3::new(0.0, 0.0, cos_i / eta_rel - cos_t)).normalize();
+        let radiance_scale = if mode == TransportMode::Radiance {
+            1.0 / (eta_rel * eta_rel)
+        } else {
+            1.0
+        };
+        self.delta_sample(wo, li, side, tf_sqrt * radiance_scale, 1.0 - fr, mode, true)
+    }
+}
