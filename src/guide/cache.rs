@@ -23,10 +23,10 @@
 //! the thread count: regions are built independently, without random numbers.
 
 use crate::Rgb;
+use crate::guide::distribution::{Guide, GuideDistribution, GuideParticle};
 use crate::guide::grid::GridDistribution;
 use crate::guide::particle_map::{ParticleMap, normal_bucket};
 use crate::guide::table::DirectionTable;
-use crate::guide::{Guide, GuideDistribution, GuideParticle};
 use crate::math::{Frame, SIGNED_AXES};
 use crate::settings::GuideParams;
 use glam::Vec3;

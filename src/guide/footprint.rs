@@ -29,14 +29,15 @@
 //!   sums `sample` searches.
 
 use crate::Rgb;
+use crate::guide::channel_mix::ChannelMix;
+use crate::guide::distribution::{Guide, GuideDistribution, GuideParticle};
 use crate::guide::grid::GridDistribution;
 use crate::guide::table::DirectionTable;
-use crate::guide::{ChannelMix, Guide, GuideDistribution, GuideParticle};
+use crate::guide::tangent_grid::{cell, cell_solid_angles_cached};
 use crate::math::{Frame, PI, safe_sqrt};
 use crate::rng::Rng;
 use crate::settings::{GuideParams, RadiusRule};
 use glam::Vec3;
-use std::sync::OnceLock;
 
 /// `ω_f = 2π (1 - √(1 - r²))`, computed as `2π r² / (1 + √(1 - r²))` so that it keeps full
 /// relative precision for small `r`.
@@ -52,45 +53,6 @@ fn cap_radius_for_solid_angle(omega: f32) -> f32 {
     // 1 - cos α = ω / 2π; r² = (1 - cos α)(1 + cos α).
     let omc = (omega / (2.0 * PI)).min(1.0);
     safe_sqrt(omc * (2.0 - omc))
-}
-
-/// The solid angles of the `side x side` tangent-plane grid's cells projected onto the
-/// hemisphere, by a 16 x 16 midpoint rule per cell of `∬ dx dy / z` over the cell's part of
-/// the unit disc.
-pub fn cell_solid_angles(side: usize) -> Vec<f32> {
-    let h = 2.0 / side as f64;
-    let sub = 16;
-    let mut out = vec![0.0f32; side * side];
-    for j in 0..side {
-        for i in 0..side {
-            let mut s = 0.0f64;
-            for b in 0..sub {
-                for a in 0..sub {
-                    let x = -1.0 + (i as f64 + (a as f64 + 0.5) / sub as f64) * h;
-                    let y = -1.0 + (j as f64 + (b as f64 + 0.5) / sub as f64) * h;
-                    let z2 = 1.0 - x * x - y * y;
-                    if z2 > 0.0 {
-                        s += 1.0 / z2.sqrt();
-                    }
-                }
-            }
-            out[j * side + i] = (s * h * h / (sub * sub) as f64) as f32;
-        }
-    }
-    out
-}
-
-/// The cell solid angles for a grid side, computed once per side and kept.
-pub(crate) fn cell_solid_angles_cached(side: usize) -> &'static [f32] {
-    static CACHE: OnceLock<std::sync::Mutex<Vec<(usize, &'static [f32])>>> = OnceLock::new();
-    let cache = CACHE.get_or_init(Default::default);
-    let mut c = cache.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some((_, w)) = c.iter().find(|(s, _)| *s == side) {
-        return w;
-    }
-    let w: &'static [f32] = Box::leak(cell_solid_angles(side).into_boxed_slice());
-    c.push((side, w));
-    w
 }
 
 /// A footprint: a spherical cap around a particle direction (world frame).
@@ -210,18 +172,11 @@ impl FootprintDistribution {
         let side = params.k_g_side;
         let omega = cell_solid_angles_cached(side);
         let local: Vec<Vec3> = particles.iter().map(|p| frame.to_local(p.dir)).collect();
-        let cell = |d: Vec3| -> (usize, usize) {
-            let i =
-                (((d.x + 1.0) * 0.5 * side as f32) as isize).clamp(0, side as isize - 1) as usize;
-            let j =
-                (((d.y + 1.0) * 0.5 * side as f32) as isize).clamp(0, side as isize - 1) as usize;
-            (i, j)
-        };
         // ---- Directional density: 3 x 3 splats per hemisphere (eq. 5) ----
         let mut grid = vec![0u32; 2 * side * side];
         for d in &local {
             let base = if d.z >= 0.0 { 0 } else { side * side };
-            let (ci, cj) = cell(*d);
+            let (ci, cj) = cell(*d, side);
             for j in cj.saturating_sub(1)..=(cj + 1).min(side - 1) {
                 for i in ci.saturating_sub(1)..=(ci + 1).min(side - 1) {
                     grid[base + j * side + i] += 1;
@@ -232,7 +187,7 @@ impl FootprintDistribution {
         let mut caps: Vec<(Cap, Rgb)> = Vec::with_capacity(particles.len());
         for (p, d) in particles.iter().zip(&local) {
             let base = if d.z >= 0.0 { 0 } else { side * side };
-            let (ci, cj) = cell(*d);
+            let (ci, cj) = cell(*d, side);
             let g = grid[base + cj * side + ci].max(1) as f32;
             let w = omega[cj * side + ci].max(1e-9);
             let r_max = d.z.abs();
@@ -520,5 +475,29 @@ impl Guide for FootprintGuide {
         }
         let d = FootprintDistribution::build(frame, particles, params);
         (!d.caps.is_empty()).then(|| Box::new(d) as Box<dyn GuideDistribution>)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The quadrature that places a cap's mass in the table keeps it inside the cap.
+    #[test]
+    fn cap_quadrature_points_lie_in_their_cap() {
+        let dir = Vec3::new(0.2, 0.5, -0.8).normalize();
+        for omc in [1e-4f32, 0.01, 0.3, 1.0] {
+            let cap = Cap {
+                dir,
+                one_minus_cos: omc,
+                inv_solid_angle: 1.0 / (2.0 * PI * omc),
+            };
+            for n in [7, 16, 100] {
+                for p in cap.quadrature(n) {
+                    assert!((p.length() - 1.0).abs() < 1e-5);
+                    assert!(1.0 - p.dot(dir) <= omc * 1.0001 + 1e-6, "{omc} {n}");
+                }
+            }
+        }
     }
 }

@@ -13,7 +13,8 @@
 //! [`GridDistribution`]).
 
 use crate::Rgb;
-use crate::guide::{ChannelMix, Guide, GuideDistribution, GuideParticle};
+use crate::guide::channel_mix::ChannelMix;
+use crate::guide::distribution::{Guide, GuideDistribution, GuideParticle};
 use crate::math::{Frame, PI, safe_sqrt};
 use crate::rng::Rng;
 use crate::settings::GuideParams;

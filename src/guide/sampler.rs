@@ -18,13 +18,14 @@
 //!   and turned into a distribution at this very point.
 
 use crate::Rgb;
-use crate::bsdf::{Bsdf, TransportMode};
+use crate::bsdf::{Bsdf, Lobes, TransportMode};
 use crate::features::{Features, General};
 use crate::guide::cache::{GuideCache, Region, RegionDistribution};
+use crate::guide::channel_mix::ChannelMix;
+use crate::guide::distribution::{Guide, GuideDistribution, GuideParticle};
 use crate::guide::grid::GridDistribution;
 use crate::guide::particle_map::{Neighbor, ParticleMap};
 use crate::guide::selection::SelectionLearner;
-use crate::guide::{ChannelMix, Guide, GuideDistribution, GuideParticle, guides_at};
 use crate::math::{Frame, is_valid_rgb, luminance};
 use crate::rng::Rng;
 use crate::settings::GuideParams;
@@ -32,6 +33,27 @@ use glam::Vec3;
 
 /// Luminance coefficients (Rec. 709), the weights of [`luminance`].
 pub const LUMINANCE: Rgb = Rgb::new(0.2126, 0.7152, 0.0722);
+
+/// True when particles are stored and guide at surfaces with these lobes: diffuse, and
+/// glossy up to the soft-glossy exponent (the rough conductor and rough plastic by the
+/// Blinn exponent of about the same width); never mirrors, glass, smooth conductors or
+/// plastics, thin glass or strongly glossy lobes (paper §3).
+pub fn guides_at(lobes: &Lobes, soft_glossy_max: f32) -> bool {
+    match lobes {
+        Lobes::Diffuse { .. } => true,
+        Lobes::Glossy { exponent, .. } => *exponent <= soft_glossy_max,
+        // The microfacet kinds by the Blinn exponent of about the same width, 2/α² - 2.
+        Lobes::RoughConductor { distr, .. } | Lobes::RoughPlastic { distr, .. } => {
+            distr.blinn_exponent() <= soft_glossy_max
+        }
+        // Smooth plastic has a delta coat over its diffuse base.
+        Lobes::Mirror { .. }
+        | Lobes::Glass { .. }
+        | Lobes::Conductor { .. }
+        | Lobes::Plastic { .. }
+        | Lobes::ThinGlass { .. } => false,
+    }
+}
 
 /// A scattering point as the sampler sees it.
 #[derive(Clone, Copy, Debug)]

@@ -11,17 +11,17 @@
 //! exact density: `DirectionSample::pdf_w` divides the path's throughput.
 //!
 //! **The table.** In the region's frame (its side normal `z`), each hemisphere is the
-//! paper's tangent-plane grid (§2.2, the `k_g` grid of eq. 5 with `side x side` cells over
-//! `[-1, 1]²`, cells' solid angles integrated by [`cell_solid_angles`]). Per channel a cell
-//! holds the probability mass the distribution puts in it divided by its solid angle, so
+//! paper's tangent-plane grid ([`crate::guide::tangent_grid`]: §2.2, the `k_g` grid of eq. 5
+//! with `side x side` cells over `[-1, 1]²`, cells' solid angles integrated). Per channel a
+//! cell holds the probability mass the distribution puts in it divided by its solid angle, so
 //! every channel's table integrates to one like the density it stands for. A footprint
 //! distribution puts each cap's probability on seven points of the cap
 //! (`Cap::quadrature`): a quadrature of the cap, exact in total mass and in which
 //! hemisphere it lies (caps never cross their horizon, eq. 8-9).
 
 use crate::Rgb;
-use crate::guide::ChannelMix;
-use crate::guide::footprint::cell_solid_angles_cached;
+use crate::guide::channel_mix::ChannelMix;
+use crate::guide::tangent_grid::{cell, cell_solid_angles_cached};
 use crate::math::Frame;
 use glam::Vec3;
 
@@ -105,16 +105,13 @@ impl DirectionTable {
 /// The cell of a local direction on its hemisphere's grid, and whether it is the lower one.
 #[inline]
 fn cell_of(local: Vec3, side: usize) -> (usize, bool) {
-    let s = side as f32;
-    let i = (((local.x + 1.0) * 0.5 * s) as isize).clamp(0, side as isize - 1) as usize;
-    let j = (((local.y + 1.0) * 0.5 * s) as isize).clamp(0, side as isize - 1) as usize;
+    let (i, j) = cell(local, side);
     (j * side + i, local.z < 0.0)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::guide::footprint::Cap;
     use crate::math::PI;
 
     /// A uniform density over the upper hemisphere (mass spread evenly over many points)
@@ -151,24 +148,5 @@ mod tests {
             );
         }
         assert_eq!(t.pdf(&mix, frame.to_world(Vec3::new(0.1, 0.1, -0.99))), 0.0);
-    }
-
-    /// The quadrature that places a cap's mass in the table keeps it inside the cap.
-    #[test]
-    fn cap_quadrature_points_lie_in_their_cap() {
-        let dir = Vec3::new(0.2, 0.5, -0.8).normalize();
-        for omc in [1e-4f32, 0.01, 0.3, 1.0] {
-            let cap = Cap {
-                dir,
-                one_minus_cos: omc,
-                inv_solid_angle: 1.0 / (2.0 * PI * omc),
-            };
-            for n in [7, 16, 100] {
-                for p in cap.quadrature(n) {
-                    assert!((p.length() - 1.0).abs() < 1e-5);
-                    assert!(1.0 - p.dot(dir) <= omc * 1.0001 + 1e-6, "{omc} {n}");
-                }
-            }
-        }
     }
 }
