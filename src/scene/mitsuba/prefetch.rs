@@ -8,7 +8,7 @@
 //! place in the document, which reports the error exactly as a sequential load does (the
 //! first failing element in document order, with its file name).
 
-use super::shapes::{self, MeshData};
+use super::meshes::{self, MeshData};
 use super::xml::{Doc, Props};
 use crate::scene::texture::Texture;
 use rayon::prelude::*;
@@ -65,7 +65,7 @@ impl Prefetched {
             .with_max_len(1)
             .map(|((kind, path), uses)| {
                 let file = match kind {
-                    Kind::Mesh => shapes::load_obj(&path).ok().map(File::Mesh),
+                    Kind::Mesh => meshes::load_obj(&path).ok().map(File::Mesh),
                     Kind::Texture => Texture::load(&path).ok().map(File::Texture),
                 };
                 (path, file, uses)
@@ -90,7 +90,7 @@ impl Prefetched {
     pub fn mesh(&mut self, path: &Path) -> crate::error::Result<MeshData> {
         match take(&mut self.meshes, path) {
             Some(m) => Ok(m),
-            None => shapes::load_obj(path),
+            None => meshes::load_obj(path),
         }
     }
 

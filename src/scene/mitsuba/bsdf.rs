@@ -1,0 +1,290 @@
+//! The `<bsdf>` element: Mitsuba's BSDFs as footprint materials (`docs/mitsuba.md` tables
+//! the mapping).
+
+use super::builder::Builder;
+use super::xml::Props;
+use crate::Rgb;
+use crate::bsdf::material::{Material, MaterialKind};
+use crate::bsdf::microfacet::Microfacet;
+use crate::error::Result;
+use roxmltree::{Node, NodeId};
+
+/// Named indices of refraction Mitsuba 3 accepts for `int_ior`/`ext_ior`.
+const NAMED_IOR: &[(&str, f32)] = &[
+    ("vacuum", 1.0),
+    ("helium", 1.000036),
+    ("hydrogen", 1.000132),
+    ("air", 1.000277),
+    ("carbon dioxide", 1.00045),
+    ("water", 1.333),
+    ("acetone", 1.36),
+    ("ethanol", 1.361),
+    ("carbon tetrachloride", 1.461),
+    ("glycerol", 1.4729),
+    ("benzene", 1.501),
+    ("silicone oil", 1.52045),
+    ("bromine", 1.661),
+    ("water ice", 1.31),
+    ("fused quartz", 1.458),
+    ("pyrex", 1.470),
+    ("acrylic glass", 1.49),
+    ("polypropylene", 1.49),
+    ("bk7", 1.5046),
+    ("sodium chloride", 1.544),
+    ("amber", 1.55),
+    ("pet", 1.575),
+    ("diamond", 2.419),
+];
+
+const BSDFS: &str = "diffuse, twosided, dielectric, thindielectric, conductor, roughconductor, plastic, roughplastic";
+
+impl<'a, 'd> Builder<'a, 'd> {
+    fn ior(&self, p: &Props<'a, 'd>, name: &str, default: f32) -> Result<f32> {
+        let Some(n) = p.get(name) else {
+            return Ok(default);
+        };
+        let v = self.doc.req_attr(n, "value")?;
+        if let Ok(x) = v.trim().parse::<f32>() {
+            if x.is_finite() && x > 0.0 {
+                return Ok(x);
+            }
+        }
+        NAMED_IOR
+            .iter()
+            .find(|(k, _)| *k == v.trim().to_lowercase())
+            .map(|(_, x)| *x)
+            .ok_or_else(|| {
+                self.doc.err(
+                    n,
+                    format!(
+                        "'{name}': '{v}' is neither a positive number nor a known material ({})",
+                        NAMED_IOR
+                            .iter()
+                            .map(|(k, _)| *k)
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                )
+            })
+    }
+
+    fn microfacet(&self, p: &Props<'a, 'd>, node: Node) -> Result<(Microfacet, f32)> {
+        let dist = match p.string("distribution")?.as_deref().unwrap_or("beckmann") {
+            "beckmann" => Microfacet::Beckmann,
+            "ggx" => Microfacet::Ggx,
+            other => {
+                return Err(self.doc.err(
+                    node,
+                    format!("distribution '{other}' (expected beckmann or ggx)"),
+                ));
+            }
+        };
+        let alpha = match (p.float("alpha")?, p.float("alpha_u")?, p.float("alpha_v")?) {
+            (Some(a), None, None) => a,
+            (None, Some(u), Some(v)) => {
+                if (u - v).abs() > 1e-6 * u.max(v) {
+                    self.doc.unsupported(
+                        node,
+                        "anisotropic roughness (alpha_u != alpha_v)",
+                        "isotropic alpha",
+                        &format!(
+                            "isotropic alpha = sqrt(alpha_u alpha_v) = {}",
+                            (u * v).sqrt()
+                        ),
+                    )?;
+                }
+                (u * v).sqrt()
+            }
+            (None, None, None) => 0.1,
+            _ => {
+                return Err(self
+                    .doc
+                    .err(node, "give either 'alpha' or both 'alpha_u' and 'alpha_v'"));
+            }
+        };
+        if !(alpha > 0.0 && alpha <= 4.0) {
+            return Err(self
+                .doc
+                .err(node, format!("alpha must be in (0, 4], got {alpha}")));
+        }
+        if p.is_texture("alpha") {
+            return Err(self.doc.err(node, "a textured alpha is not supported"));
+        }
+        p.ignore(&["sample_visible"]);
+        Ok((dist, alpha.max(1e-4)))
+    }
+
+    fn conductor_ior(&self, p: &Props<'a, 'd>, node: Node) -> Result<(Rgb, Rgb)> {
+        let eta = p.rgb("eta")?;
+        let k = p.rgb("k")?;
+        let material = p.string("material")?;
+        // Mitsuba's eta and k are relative to the exterior's index.
+        let ext = self.ior(p, "ext_eta", 1.0)?;
+        match (eta, k, material.as_deref()) {
+            (Some(e), Some(k), None) => Ok((e / ext, k / ext)),
+            // Mitsuba: `k` defaults to 1 when `eta` is given.
+            (Some(e), None, None) => Ok((e / ext, Rgb::ONE / ext)),
+            // Mitsuba's default `none`: η = 0, k = 1, whose Fresnel factor is 1 at every angle
+            // (a perfect mirror).
+            (None, None, None | Some("none")) => Ok((Rgb::ZERO, Rgb::ONE)),
+            (None, None, Some(m)) => {
+                self.doc.unsupported(
+                    node,
+                    &format!("conductor material '{m}'"),
+                    "material 'none' or explicit 'eta' and 'k' colours",
+                    "a perfect mirror (material 'none')",
+                )?;
+                Ok((Rgb::ZERO, Rgb::ONE))
+            }
+            _ => Err(self.doc.err(
+                node,
+                "give 'eta' (and 'k', default 1) or a 'material', not both",
+            )),
+        }
+    }
+
+    /// Builds a `<bsdf>` (once per element); the material is not yet in the scene.
+    pub(super) fn bsdf(&mut self, node: Node<'a, 'a>) -> Result<Material> {
+        if let Some(m) = self.material_of.get(&node.id()) {
+            return Ok(m.clone());
+        }
+        if self.building.contains(&node.id()) {
+            return Err(self
+                .doc
+                .err(node, "this BSDF contains itself (a cycle of references)"));
+        }
+        self.building.push(node.id());
+        let m = self.build_bsdf(node);
+        self.building.pop();
+        m
+    }
+
+    fn build_bsdf(&mut self, node: Node<'a, 'a>) -> Result<Material> {
+        let kind = self.kind(node)?;
+        let p = Props::new(self.doc, node)?;
+        let name = node
+            .attribute("id")
+            .map(str::to_string)
+            .unwrap_or_else(|| format!("{kind}@{}", self.doc.pos(node).0));
+        let mut m = Material {
+            name,
+            two_sided: false,
+            ..Material::default()
+        };
+        match kind.as_str() {
+            "twosided" => {
+                let inner: Vec<Node> = p
+                    .unnamed
+                    .iter()
+                    .map(|n| self.deref(*n))
+                    .collect::<Result<_>>()?;
+                let inner: Vec<Node> = inner
+                    .into_iter()
+                    .filter(|n| n.has_tag_name("bsdf"))
+                    .collect();
+                match inner.as_slice() {
+                    [b] => {
+                        let mut im = self.bsdf(*b)?;
+                        im.two_sided = true;
+                        im.name = m.name;
+                        m = im;
+                    }
+                    [b, ..] => {
+                        self.doc.unsupported(
+                            node,
+                            "twosided with different front and back BSDFs",
+                            "twosided with one BSDF",
+                            "the front BSDF on both sides",
+                        )?;
+                        let mut im = self.bsdf(*b)?;
+                        im.two_sided = true;
+                        m = im;
+                    }
+                    [] => return Err(self.doc.err(node, "twosided needs a nested <bsdf>")),
+                }
+            }
+            "diffuse" => {
+                m.kind = MaterialKind::Diffuse;
+                (m.kd, m.kd_texture) = self.color_or_texture(&p, "reflectance", Rgb::splat(0.5))?;
+            }
+            "dielectric" | "thindielectric" => {
+                let int = self.ior(&p, "int_ior", 1.5046)?;
+                let ext = self.ior(&p, "ext_ior", 1.000277)?;
+                m.ni = int / ext;
+                let (sr, srt) = self.color_or_texture(&p, "specular_reflectance", Rgb::ONE)?;
+                let (st, stt) = self.color_or_texture(&p, "specular_transmittance", Rgb::ONE)?;
+                if srt.is_some() || stt.is_some() || sr != Rgb::ONE {
+                    self.doc.unsupported(
+                        node,
+                        "a textured or non-white specular_reflectance, or a textured specular_transmittance, of a dielectric",
+                        "a constant specular_transmittance",
+                        "white reflectance and the constant factor",
+                    )?;
+                }
+                m.ks = sr;
+                if kind == "dielectric" {
+                    m.kind = MaterialKind::Glass;
+                    // `tf` is the transmittance of a passage in and out: two interfaces.
+                    m.tf = st * st;
+                } else {
+                    m.kind = MaterialKind::ThinGlass;
+                    m.tf = st;
+                }
+            }
+            "conductor" | "roughconductor" => {
+                (m.eta, m.k) = self.conductor_ior(&p, node)?;
+                (m.ks, m.ks_texture) =
+                    self.color_or_texture(&p, "specular_reflectance", Rgb::ONE)?;
+                if kind == "conductor" {
+                    m.kind = MaterialKind::Conductor;
+                } else {
+                    m.kind = MaterialKind::RoughConductor;
+                    (m.microfacet, m.alpha) = self.microfacet(&p, node)?;
+                }
+            }
+            "plastic" | "roughplastic" => {
+                let int = self.ior(&p, "int_ior", 1.49)?;
+                let ext = self.ior(&p, "ext_ior", 1.000277)?;
+                m.ni = int / ext;
+                (m.kd, m.kd_texture) =
+                    self.color_or_texture(&p, "diffuse_reflectance", Rgb::splat(0.5))?;
+                (m.ks, m.ks_texture) =
+                    self.color_or_texture(&p, "specular_reflectance", Rgb::ONE)?;
+                m.nonlinear = p.boolean("nonlinear")?.unwrap_or(false);
+                if kind == "plastic" {
+                    m.kind = MaterialKind::Plastic;
+                } else {
+                    m.kind = MaterialKind::RoughPlastic;
+                    (m.microfacet, m.alpha) = self.microfacet(&p, node)?;
+                }
+            }
+            other => {
+                self.doc.unsupported(
+                    node,
+                    &format!("bsdf '{other}'"),
+                    BSDFS,
+                    "a grey diffuse BSDF (reflectance 0.5)",
+                )?;
+                self.material_of.insert(node.id(), m.clone());
+                return Ok(m);
+            }
+        }
+        p.finish(&format!("bsdf '{kind}'"))?;
+        let m = m.sanitized();
+        self.material_of.insert(node.id(), m.clone());
+        Ok(m)
+    }
+
+    /// Index of the scene material made from BSDF element `bsdf` (`None`: the default BSDF)
+    /// with emission `m.ke`, adding `m` when new.
+    pub(super) fn material_id(&mut self, bsdf: Option<NodeId>, m: Material) -> u32 {
+        let key = (bsdf, m.ke.to_array().map(f32::to_bits));
+        if let Some(&i) = self.material_index.get(&key) {
+            return i;
+        }
+        self.materials.push(m);
+        let i = self.materials.len() as u32 - 1;
+        self.material_index.insert(key, i);
+        i
+    }
+}

@@ -1,0 +1,218 @@
+//! The `<shape>` element: a mesh (`meshes.rs`) with its BSDF and area emitter, transformed to
+//! the world and added to the scene's triangles.
+
+use super::builder::Builder;
+use super::meshes::{self, MeshData};
+use super::xml::Props;
+use crate::bsdf::material::Material;
+use crate::error::Result;
+use crate::scene::geometry::{TriangleGeom, TriangleShading};
+use glam::{Mat3, Mat4, Vec2, Vec3};
+use roxmltree::{Node, NodeId};
+
+const SHAPES: &str = "obj, rectangle, cube, sphere";
+
+impl<'a, 'd> Builder<'a, 'd> {
+    pub(super) fn shape(&mut self, node: Node<'a, 'a>) -> Result<()> {
+        let kind = self.kind(node)?;
+        let p = Props::new(self.doc, node)?;
+        let mut to_world = p.transform("to_world")?.unwrap_or(Mat4::IDENTITY);
+        let flip_normals = p.boolean("flip_normals")?.unwrap_or(false);
+        let mut face_normals = false;
+        let mut mesh = match kind.as_str() {
+            "obj" => {
+                let file = p
+                    .string("filename")?
+                    .ok_or_else(|| self.doc.err(node, "obj needs 'filename'"))?;
+                face_normals = p.boolean("face_normals")?.unwrap_or(false);
+                let flip_tex = p.boolean("flip_tex_coords")?.unwrap_or(true);
+                let mut mesh = self.files.mesh(&self.doc.file(&file))?;
+                if !flip_tex {
+                    // Mitsuba then reads v as stored: flip it into the OBJ convention.
+                    for t in mesh.uvs.iter_mut().flatten() {
+                        t.y = 1.0 - t.y;
+                    }
+                }
+                if mesh.normals.is_none() && !face_normals {
+                    mesh.normals = Some(meshes::angle_weighted_normals(&mesh));
+                }
+                mesh
+            }
+            "rectangle" => meshes::rectangle(),
+            "cube" => meshes::cube(),
+            "sphere" => {
+                let center = p.vec3("center")?.unwrap_or(Vec3::ZERO);
+                let radius = p.float_or("radius", 1.0)?;
+                if !(radius > 0.0) {
+                    return Err(self.doc.err(
+                        node,
+                        format!("sphere radius must be positive, got {radius}"),
+                    ));
+                }
+                to_world = to_world
+                    * Mat4::from_translation(center)
+                    * Mat4::from_scale(Vec3::splat(radius));
+                meshes::sphere(64, 128)
+            }
+            other => {
+                return self.doc.unsupported(
+                    node,
+                    &format!("shape '{other}'"),
+                    SHAPES,
+                    "nothing (the shape is skipped)",
+                );
+            }
+        };
+        p.ignore(&["face_normals"]);
+        p.finish(&format!("shape '{kind}'"))?;
+        // BSDF and area emitter among the nested objects.
+        let mut material: Option<(NodeId, Material)> = None;
+        let mut radiance = None;
+        for c in &p.unnamed {
+            let c = self.deref(*c)?;
+            match c.tag_name().name() {
+                "bsdf" => {
+                    if material.is_some() {
+                        return Err(self.doc.err(c, "a shape has one BSDF"));
+                    }
+                    material = Some((c.id(), self.bsdf(c)?));
+                }
+                "emitter" => {
+                    let ek = self.kind(c)?;
+                    if ek != "area" {
+                        return Err(self
+                            .doc
+                            .err(c, format!("a shape's emitter must be 'area', not '{ek}'")));
+                    }
+                    let ep = Props::new(self.doc, c)?;
+                    if ep.is_texture("radiance") {
+                        self.doc.unsupported(
+                            c,
+                            "a textured radiance",
+                            "a constant radiance",
+                            "radiance 1",
+                        )?;
+                    }
+                    let le = self.emission(&ep, "radiance")?;
+                    ep.finish("emitter 'area'")?;
+                    radiance = Some(le);
+                }
+                other => {
+                    self.doc.unsupported(
+                        c,
+                        &format!("<{other}> in a shape"),
+                        "bsdf, emitter, ref",
+                        "nothing",
+                    )?;
+                }
+            }
+        }
+        // Mitsuba's default BSDF: one-sided diffuse of reflectance 0.5.
+        let (bsdf_node, mut m) = match material {
+            Some((id, m)) => (Some(id), m),
+            None => (
+                None,
+                Material {
+                    name: "default".into(),
+                    two_sided: false,
+                    ..Material::default()
+                },
+            ),
+        };
+        if let Some(le) = radiance {
+            m.ke = le;
+            if let Some(id) = node.attribute("id") {
+                m.name = format!("{} (emitter {id})", m.name);
+            }
+        }
+        let material = self.material_id(bsdf_node, m);
+        // Mitsuba's rectangle and sphere take their front from the transformed normal (the
+        // inverse transpose), not from the winding, which a mirroring transform reverses.
+        let primitive = matches!(kind.as_str(), "rectangle" | "sphere");
+        let mirrored = primitive && Mat3::from_mat4(to_world).determinant() < 0.0;
+        self.push_mesh(
+            &mesh,
+            to_world,
+            material,
+            face_normals,
+            flip_normals,
+            mirrored,
+        );
+        self.stats.meshes += 1;
+        mesh.indices.clear();
+        Ok(())
+    }
+
+    /// Adds a mesh's triangles; `flip` (flip_normals) turns normals and winding around,
+    /// `rewind` reverses the winding only (a mirrored primitive).
+    fn push_mesh(
+        &mut self,
+        mesh: &MeshData,
+        to_world: Mat4,
+        material: u32,
+        face_normals: bool,
+        flip: bool,
+        rewind: bool,
+    ) {
+        let normal_matrix = Mat3::from_mat4(to_world).inverse().transpose();
+        let pos: Vec<Vec3> = mesh
+            .positions
+            .iter()
+            .map(|p| to_world.transform_point3(*p))
+            .collect();
+        let normals: Option<Vec<Vec3>> = if face_normals {
+            None
+        } else {
+            mesh.normals.as_ref().map(|ns| {
+                ns.iter()
+                    .map(|n| {
+                        let n = (normal_matrix * *n).normalize_or_zero();
+                        if flip { -n } else { n }
+                    })
+                    .collect()
+            })
+        };
+        for f in &mesh.indices {
+            let [i0, i1, i2] = f.map(|i| i as usize);
+            let (i0, i2) = if flip != rewind { (i2, i0) } else { (i0, i2) };
+            let geom = TriangleGeom::new(pos[i0], pos[i1], pos[i2]);
+            if crate::scene::obj::is_degenerate(&geom) {
+                self.stats.degenerate_skipped += 1;
+                continue;
+            }
+            let tri_normals = normals.as_ref().and_then(|n| {
+                let t = [n[i0], n[i1], n[i2]];
+                t.iter()
+                    .all(|v| v.is_finite() && *v != Vec3::ZERO)
+                    .then_some(t)
+            });
+            // Without texture coordinates Mitsuba uses the barycentrics (b1, b2) of the face as
+            // written: its vertices at (0, 0), (1, 0), (0, 1), stored here OBJ-style (v up).
+            let swapped = flip != rewind;
+            let tri_uvs: [Vec2; 3] = match &mesh.uvs {
+                Some(u) => [u[i0], u[i1], u[i2]],
+                None => {
+                    let b = |k: usize| {
+                        [
+                            Vec2::new(0.0, 1.0),
+                            Vec2::new(1.0, 1.0),
+                            Vec2::new(0.0, 0.0),
+                        ][k]
+                    };
+                    if swapped {
+                        [b(2), b(1), b(0)]
+                    } else {
+                        [b(0), b(1), b(2)]
+                    }
+                }
+            };
+            self.triangles.push(geom);
+            self.shading.push(TriangleShading {
+                normals: tri_normals,
+                uvs: Some(tri_uvs),
+                material,
+                light: None,
+            });
+        }
+    }
+}
