@@ -125,7 +125,7 @@ impl Rng {
 
     /// The numbers of pass `pass` of stream `stream` (a pixel, or a light path's slot in a
     /// pass) in `domain`. With [`Sequence::Independent`] this is `Rng::new(seed, domain,
-    /// pass * streams + stream)` (the streams of every earlier release); with
+    /// pass * streams + stream)`; with
     /// [`Sequence::Sobol`], point `pass` of the stream's own scrambled sequence (independent
     /// numbers, from that same stream, past its 2^16 points).
     pub fn for_pass(

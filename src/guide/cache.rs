@@ -1,7 +1,8 @@
 //! The guide cache: guide distributions prepared once per region of space and normal
 //! direction, after the particle passes and before rendering, and shared by every
 //! scattering event that falls in the region. It replaces the paper's per-event k-nearest
-//! search (about 20 µs, the price of dozens of rays) by a tree descent.
+//! search and build (about 20 µs, the price of dozens of rays: `docs/measurements/speed.md`)
+//! by a tree descent.
 //!
 //! **Regions.** The places where the *other* pass's paths scattered tell where this
 //! direction's paths will ask: importon positions for the photon map's cache (camera paths
@@ -89,10 +90,10 @@ const NONE: u32 = u32::MAX;
 
 /// A node of the tree that finds a point's region: eight bytes, so that the upper levels
 /// stay in the first-level cache (a descent is a chain of dependent loads, one per level; a
-/// 28-byte node holding the leaf's regions made it a chain of cache misses). `link`'s top
-/// two bits are the split axis (3: a leaf), the rest the right child's index or the leaf's
-/// index in [`GuideCache::leaves`] (its region per normal bucket); the left child follows
-/// its parent.
+/// node large enough to hold the leaf's regions would make it a chain of cache misses).
+/// `link`'s top two bits are the split axis (3: a leaf), the rest the right child's index or
+/// the leaf's index in [`GuideCache::leaves`] (its region per normal bucket); the left child
+/// follows its parent.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct PackedNode {
     split: f32,

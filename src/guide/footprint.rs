@@ -115,8 +115,8 @@ fn golden_turn(k: usize) -> (f32, f32) {
 
 /// [`golden_turn`] of the first [`MAX_QUADRATURE`] turns, computed once (the same numbers):
 /// rasterising the caps of the guide cache's regions spends most of its time on quadrature
-/// points, and their sines and cosines were a fifth of it (door, both caches: 0.36 CPU-s of
-/// distribution builds without the table, 0.28 with it).
+/// points, and computing their sines and cosines at every point would be a large share of
+/// it.
 fn golden_turns() -> &'static [(f32, f32)] {
     static TURNS: std::sync::OnceLock<Vec<(f32, f32)>> = std::sync::OnceLock::new();
     TURNS.get_or_init(|| (0..MAX_QUADRATURE).map(golden_turn).collect())

@@ -41,10 +41,9 @@ fn morton3(unit: [f32; 3]) -> u64 {
 /// The particles in Morton order over the bounds `lo`..`hi` (ties in input order). A map
 /// keeps its particles so: a query's candidates then lie in a few runs of the records
 /// instead of all over them (a pass stores particles in path order), and its tests of
-/// their normals and planes stop waiting on memory (door, each guide cache's queries:
-/// 0.37-0.52 CPU-s in input order, 0.24-0.36 in this order). A query breaks ties of
-/// distance by this order's index, so where two candidates lie at exactly the same
-/// distance at the `k`-th place another one may be kept than in input order.
+/// their normals and planes wait less on memory. A query breaks ties of distance by this
+/// order's index, so where two candidates lie at exactly the same distance at the `k`-th
+/// place another one may be kept than in input order.
 fn in_spatial_order(particles: &[&ParticleInput], lo: Vec3, hi: Vec3) -> Vec<ParticleInput> {
     let ext = (hi - lo).max(Vec3::splat(f32::MIN_POSITIVE));
     let mut keys: Vec<u64> = particles

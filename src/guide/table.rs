@@ -3,12 +3,12 @@
 //! The combined image weighs its strategies with the densities the guided samplers draw
 //! with (docs/method.md, "Guided MIS weights"): every vertex of both subpaths asks for the
 //! guided density of the camera direction and of the light direction, three to four times
-//! a vertex. With the exact footprint mixture (eq. 12, 17) each ask walks the caps, which
-//! took a third of a guided combined pass on Veach Ajar. The weights need not read the
-//! exact densities: any densities give weights that are a partition of unity, so the image
-//! stays unbiased, as long as every strategy of a path reads the *same* ones (Veach 1997,
-//! §9.2; pbrt-v4's and Open PGL's guided MIS read approximations too). Sampling keeps the
-//! exact density: `DirectionSample::pdf_w` divides the path's throughput.
+//! a vertex. With the exact footprint mixture (eq. 12, 17) each ask walks the caps, a large
+//! share of a guided combined pass. The weights need not read the exact densities: any
+//! densities give weights that are a partition of unity, so the image stays unbiased, as
+//! long as every strategy of a path reads the *same* ones (Veach 1997, §9.2; pbrt-v4's and
+//! Open PGL's guided MIS read approximations too). Sampling keeps the exact density:
+//! `DirectionSample::pdf_w` divides the path's throughput.
 //!
 //! **The table.** In the region's frame (its side normal `z`), each hemisphere is the
 //! paper's tangent-plane grid ([`crate::guide::tangent_grid`]: §2.2, the `k_g` grid of eq. 5

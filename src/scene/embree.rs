@@ -10,8 +10,8 @@
 //! has another file name and is not loaded). The scene is built with high quality and the
 //! robust (watertight) test, from quads: pairs of triangles that share an edge ([`quads`]),
 //! half the primitives, as Embree recommends for quad meshes; queries are single incoherent
-//! rays. (Without the robust flag Embree ran 12% fewer instructions on Bitterli's Cornell
-//! box but 5-10% more time, so the flag stays.)
+//! rays. Without the robust flag Embree runs fewer instructions but takes longer
+//! (`docs/measurements/speed.md`, "The acceleration structure").
 
 use crate::scene::bvh::BvhHit;
 use crate::scene::geometry::TriangleGeom;
@@ -173,8 +173,7 @@ pub struct EmbreeBvh {
 /// triangle has its corners 1 and 2 among the half's corners in Embree's order (`(v0, v1,
 /// v3)` for the first half, `(v2, v3, v1)` for the second), so that the hit's barycentrics
 /// on the triangle are the weights Embree gives those corners. Eight bytes a quad, read at
-/// every hit (Veach Ajar 1.5 MB; a triangle and two corner codes per half took 4.6 MB, for
-/// the same time: 2.30 against 2.28 s, medians of eight one-thread renders).
+/// every hit (1.5 MB on Veach Ajar).
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Quad {
     first: u32,

@@ -15,8 +15,7 @@ use std::path::Path;
 pub enum TextureKind {
     /// An 8-bit image, row-major, top row first, sRGB-encoded as in its file. Lookups decode
     /// through a 256-entry table: 4 bytes a texel instead of 12 keeps 3 times more of a large
-    /// texture in cache (the lookups are memory-bound: on Veach Ajar the 2000x3008 wall
-    /// picture made texture lookups 9% of the render), and gives the same linear values as
+    /// texture in cache (the lookups are memory-bound), and gives the same linear values as
     /// decoding at load.
     Bitmap {
         width: u32,

@@ -1,4 +1,5 @@
-//! Scene files: the TOML format (documented in the README) and the OBJ/MTL meshes it names.
+//! Scene files: the TOML format (documented in `docs/scene-format.md`) and the OBJ/MTL meshes
+//! it names.
 //!
 //! Every error names the file and, where there is one, the line: TOML syntax errors and
 //! unknown keys come with line and column; invalid values name their field
@@ -150,7 +151,7 @@ fn non_negative3(path: &Path, field: &str, v: [f32; 3]) -> Result<Vec3> {
     Ok(v)
 }
 
-/// Loads a TOML scene file (the format of the README's "Scene format").
+/// Loads a TOML scene file (the format of `docs/scene-format.md`).
 pub fn load(path: &Path) -> Result<Scene> {
     let text = std::fs::read_to_string(path).map_err(|reason| Error::Io {
         path: path.to_path_buf(),

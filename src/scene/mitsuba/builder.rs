@@ -26,7 +26,7 @@ pub(super) struct Builder<'a, 'd> {
     pub(super) textures: Vec<Texture>,
     pub(super) lights: Vec<Light>,
     pub(super) stats: LoadStats,
-    /// Built BSDF elements (material index) and texture elements (texture index).
+    /// Built BSDF elements (their material) and texture elements (texture index).
     pub(super) material_of: HashMap<NodeId, Material>,
     pub(super) texture_of: HashMap<NodeId, u32>,
     /// Index of each scene material by the BSDF element it comes from and its emission.
