@@ -72,8 +72,8 @@ pub struct RenderSettings {
 /// `path` starts at 5. The throughput rule cuts the long paths that carry light into rooms
 /// lit indirectly, and starting later measured better at equal time on four of five scenes
 /// (Veach Ajar `pt-bsdf` 0.76x the error, door `lt-footprint` 0.75x, desk `lt-bsdf` 0.89x,
-/// Bitterli's box 0.96x; cornell, whose paths end at 8 segments, 1.05x; README "Russian
-/// roulette").
+/// Bitterli's box 0.96x; cornell, whose paths end at 8 segments, 1.05x; the table:
+/// `docs/measurements/sweeps.md`, "Russian roulette depth").
 pub const DEFAULT_RR_DEPTH: u32 = 8;
 
 impl Default for RenderSettings {

@@ -1,7 +1,7 @@
 //! The BSDF selection probability `p_BSDF`, learned per region of the guide cache from the
-//! render's own samples (issue 12; Müller et al. 2019, "Practical Path Guiding for
-//! Efficient Light-Transport Simulation", §5 learn theirs by gradient descent on the same
-//! objective; here a small grid of candidates is searched exactly instead).
+//! render's own samples (Müller et al. 2019, "Practical Path Guiding for Efficient
+//! Light-Transport Simulation", §5 learn theirs by gradient descent on the same objective;
+//! here a small grid of candidates is searched exactly instead).
 //!
 //! **Objective.** At a guided vertex the direction is drawn from the one-sample mixture
 //! `p_α(ω) = α p_bsdf(ω) + (1 - α) p_guide(ω)`, and the vertex's estimate of its reflected
@@ -32,9 +32,9 @@ use std::sync::atomic::{AtomicU32, Ordering};
 pub const CANDIDATES: [f32; 9] = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9];
 
 /// Vertices with a non-zero return a region needs before its probability is learned. The
-/// second-moment estimates are heavy-tailed: with 32, the choice followed the noise to the
-/// grid's ends (on Veach Ajar a third of the learned regions at 0.1 or 0.9, and the image's
-/// error rose by 20-50%).
+/// second-moment estimates are heavy-tailed: with a few dozen records the choice follows the
+/// noise to the grid's ends (the learning: `docs/guiding.md`, "`p_BSDF` learned per
+/// region").
 pub const MIN_RECORDS: u64 = 512;
 
 /// What one guided vertex of a finished path teaches its region.
