@@ -19,15 +19,15 @@
 //!   scattering event in the region; the paper's per-event preparation stays available.
 //! * [`sampler`]: what the integrators call at a scattering point: `prepare`, `sample`,
 //!   `pdf`, mixing the guide with BSDF sampling (`p_BSDF`) and falling back to the BSDF
-//!   where particles cannot guide.
+//!   where particles cannot guide; [`guides_at`] says at which surfaces they can.
 //! * [`selection`]: the probability `p_BSDF` of sampling the BSDF, learned per cached
 //!   region from the render's own paths.
 //! * [`table`]: a cached region's density tabulated for the combined image's MIS weights.
 //!
 //! Adding a guide: write `src/guide/NAME.rs` with a unit struct implementing [`Guide`] and
 //! a type implementing [`GuideDistribution`], declare the module below and add the struct
-//! to [`GUIDES`] in `registry.rs`. The command line, scene files, `compare` and the EXR header take its name
-//! from there.
+//! to [`GUIDES`] in `registry.rs`. The command line, scene files, `compare` and the EXR
+//! header take its name from there.
 
 pub mod cache;
 mod channel_mix;
