@@ -13,11 +13,13 @@
 //!   absent effect out of the path loop, the BSDF and the direction sampler;
 //! * [`film`]: the film, pixel filters and image files;
 //! * [`settings`]: what a scene file's `[render]`, `[maps]` and `[guide]` tables hold;
+//! * [`schema`]: the settings set by name (scene file keys, flags, sweeps, headers, keys);
 //! * foundations: [`math`], [`sampling`] (warps and discrete distributions), [`rng`],
 //!   [`heap`] (a counting allocator), [`error`], [`atomic_file`] (whole-or-nothing writes).
 //!
-//! The integrators and the command line live in the `footprint-integrators` crate
-//! (`integrators/`).
+//! The transport (passes, maps, the path loop, the integrators, `auto`) is the
+//! `footprint-integrators` crate (`integrators/`); the command line is `footprint-app`
+//! (`app/`).
 
 pub mod atomic_file;
 pub mod bsdf;
@@ -30,6 +32,7 @@ pub mod math;
 pub mod rng;
 pub mod sampling;
 pub mod scene;
+pub mod schema;
 pub mod settings;
 
 pub use error::{Error, Result};

@@ -3,7 +3,7 @@
 //! `validate`, whose errors name the setting. The scene stores these values; only the
 //! renderer reads them, so the scene does not depend on the guiding code.
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// A setting with a bad value: which one, and why. A scene file reports it as
 /// `guide.k_p: ...`, the command line as `--k-p ...` ([`SettingError::flag`]).
@@ -131,7 +131,7 @@ impl RenderSettings {
 pub const MAX_MAP_PATHS: usize = 50_000_000;
 
 /// The `[maps]` table: the two particle passes.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct MapSettings {
     /// Photon paths shot by the light pass.
@@ -203,7 +203,7 @@ impl MapSettings {
 }
 
 /// How the footprint radius follows the directional density (docs/method.md, "Eq. 7").
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
 pub enum RadiusRule {
     /// The cap's solid angle is k_r over the directional density (particles per steradian)
@@ -223,7 +223,7 @@ impl RadiusRule {
 
 /// The `[guide]` table: parameters of the guided samplers (paper §3 defaults) and of the
 /// guide cache.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct GuideParams {
     /// `k_p`: particles per per-event query, and the fewest a cached region guides with.

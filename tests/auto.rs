@@ -6,8 +6,8 @@ mod common;
 
 use footprint::scene::Scene;
 use footprint::scene::load::load_scene;
-use footprint_integrators::auto::{AutoSpec, choose};
-use footprint_integrators::{Method, RenderOptions, render};
+use footprint_integrators::auto::{AutoSpec, Decision, Note, Request, Run, choose, render_request};
+use footprint_integrators::{Method, RenderOptions};
 use std::path::PathBuf;
 
 /// A folder of its own for a test's scene files.
@@ -54,6 +54,20 @@ fn glow_scene() -> Scene {
     load_scene(&d.join("scene.toml")).unwrap()
 }
 
+/// The spec of `auto` with `guide` fixed (`auto-GUIDE`): the integrator chosen.
+fn integrator_chosen(guide: &str) -> AutoSpec {
+    AutoSpec::new(None, Some(Method::guide(guide).unwrap()))
+}
+
+/// Renders `request` as `footprint render` does, and returns the result and the choice.
+fn render_auto(
+    scene: &Scene,
+    o: &RenderOptions,
+    request: &Request,
+) -> footprint_integrators::auto::Rendered {
+    render_request(scene, o, request, &Run::default(), &mut |_| {}, |_| {}).unwrap()
+}
+
 fn opts() -> RenderOptions {
     RenderOptions {
         spp: 32,
@@ -66,25 +80,27 @@ fn opts() -> RenderOptions {
 #[test]
 fn auto_picks_light_tracing_for_a_point_light_caustic_through_glass() {
     let scene = caustic_scene();
-    let spec = AutoSpec::new(None, Some(Method::default()));
+    let spec = integrator_chosen("bsdf");
     assert_eq!(spec.label, "auto-bsdf");
     // Compared at the time of 256 path-tracing passes: at a few milliseconds (32 passes of
     // this 40x40 image) light tracing's own noise is as large as the whole missing caustic,
     // and the choice would turn on the machine's pass-time ratio.
     let o = RenderOptions { spp: 256, ..opts() };
     let c = choose(&scene, &o, &spec);
-    eprintln!("{}: {}", c.method.name(), c.reason);
-    assert_eq!(c.method.name(), "lt-bsdf", "{}", c.reason);
-    assert!(c.reason.contains("pt-bsdf misses light"), "{}", c.reason);
+    eprintln!("{c:?}");
+    assert_eq!(c.method.name(), "lt-bsdf", "{c:?}");
+    assert!(
+        c.noted(|n| matches!(n, Note::MissesLight { method, .. } if method == "pt-bsdf")),
+        "{c:?}"
+    );
 }
 
 #[test]
 fn auto_picks_path_tracing_where_the_camera_sees_the_lights_glow() {
     let scene = glow_scene();
-    let spec = AutoSpec::new(None, Some(Method::default()));
-    let c = choose(&scene, &opts(), &spec);
-    eprintln!("{}: {}", c.method.name(), c.reason);
-    assert_eq!(c.method.name(), "pt-bsdf", "{}", c.reason);
+    let c = choose(&scene, &opts(), &integrator_chosen("bsdf"));
+    eprintln!("{c:?}");
+    assert_eq!(c.method.name(), "pt-bsdf", "{c:?}");
 }
 
 /// `render` with `auto`: the pilot counts in a time budget, the result says what was chosen.
@@ -92,30 +108,42 @@ fn auto_picks_path_tracing_where_the_camera_sees_the_lights_glow() {
 fn render_with_auto_keeps_the_budget_and_reports_the_choice() {
     let mut scene = load_scene(&common::scene_path("desk")).unwrap();
     scene.camera = scene.camera.with_resolution(48, 48).unwrap();
-    let mut o = RenderOptions {
+    let o = RenderOptions {
         time: Some(1.5),
         ..opts()
     };
-    o.apply_names(Some("auto"), Some("auto")).unwrap();
-    assert_eq!(o.auto.as_ref().unwrap().label, "auto");
-    let r = render(&scene, &o, |_| {});
-    let why = r.auto.clone().expect("auto reports its choice");
-    eprintln!("desk: {} ({why})", r.method.name());
+    let request = Request::default()
+        .with_names(Some("auto"), Some("auto"))
+        .unwrap();
+    assert_eq!(request.label(), "auto");
+    let out = render_auto(&scene, &o, &request);
+    let c = out.choice.expect("auto reports its choice");
+    let r = out.result;
+    eprintln!("desk: {c:?}");
+    assert_eq!(r.method, c.method, "the chosen method renders");
     // The pilot counts in the budget (25% slack: a loaded machine slows the last pass).
     assert!(r.elapsed.as_secs_f64() < 1.5 * 1.25, "took {:?}", r.elapsed);
     assert!(r.image.all_valid() && r.image.mean().max_element() > 0.0);
     // A fixed part stays fixed.
-    let mut p = opts();
-    p.apply_names(Some("lt"), Some("auto")).unwrap();
-    let spec = p.auto.unwrap();
+    let Request::Auto(spec) = request.with_names(Some("lt"), None).unwrap() else {
+        panic!("the guide is still chosen")
+    };
     assert_eq!(spec.label, "lt-auto");
     assert!(spec.candidates.iter().all(|m| m.integrator.name() == "lt"));
+    // Naming the other part fixes the method; naming auto again chooses it.
+    let fixed = request.with_names(Some("lt"), Some("grid")).unwrap();
+    assert_eq!(fixed, Request::Fixed(Method::parse("lt-grid").unwrap()));
     assert_eq!(
-        Method::parse_request("pt-auto").unwrap().1.unwrap().label,
-        "pt-auto"
+        fixed.with_names(None, Some("auto")).unwrap().label(),
+        "lt-auto"
     );
-    assert!(Method::parse_request("auto").unwrap().1.is_some());
-    assert!(Method::parse_request("pt-bsdf").unwrap().1.is_none());
+    assert_eq!(Request::parse("pt-auto").unwrap().label(), "pt-auto");
+    assert_eq!(
+        Request::parse("auto").unwrap(),
+        Request::Auto(AutoSpec::all())
+    );
+    assert!(Request::parse("pt-bsdf").unwrap().fixed().is_some());
+    assert!(Request::parse("pt-nothing").is_err());
 }
 
 /// An image of more than `PILOT_MAX_PIXELS` pixels is piloted at a lower resolution (both
@@ -130,15 +158,21 @@ fn a_large_image_is_piloted_at_a_lower_resolution_and_its_maps_guide_the_render(
     scene.camera = scene.camera.with_resolution(w, h).unwrap();
     scene.maps.photons = 20_000;
     scene.maps.importons = 20_000;
-    let spec = AutoSpec::new(None, Some(Method::parse("pt-footprint").unwrap()));
+    let spec = integrator_chosen("footprint");
     let o = RenderOptions { spp: 2, ..opts() };
     let c = choose(&scene, &o, &spec);
-    eprintln!("{}: {}", c.method.name(), c.reason);
-    assert!(c.reason.contains("piloted at 96x80"), "{}", c.reason);
+    eprintln!("{c:?}");
+    let piloted_at = |c: &footprint_integrators::auto::Choice| {
+        c.noted(|n| matches!(n, Note::PilotResolution { pilot: (96, 80), image, .. } if *image == (w, h)))
+    };
+    assert!(piloted_at(&c), "{c:?}");
     assert!(c.guidance.is_some(), "the piloted maps are handed on");
     // Two passes leave no room for the light tracer's importance target at the image's
     // resolution: the pilot builds it at its own (FULL_TARGET_SHARE).
-    assert!(!c.reason.contains("importance target at"), "{}", c.reason);
+    assert!(
+        !c.noted(|n| matches!(n, Note::TargetAtImageResolution { .. })),
+        "{c:?}"
+    );
     assert!(
         c.candidates
             .iter()
@@ -146,15 +180,9 @@ fn a_large_image_is_piloted_at_a_lower_resolution_and_its_maps_guide_the_render(
         "{:?}",
         c.candidates
     );
-    let mut r = o.clone();
-    r.apply_names(Some("auto"), Some("footprint")).unwrap();
-    let out = render(&scene, &r, |_| {});
-    assert!(
-        out.auto
-            .as_deref()
-            .unwrap_or("")
-            .contains("piloted at 96x80")
-    );
+    let out = render_auto(&scene, &o, &Request::Auto(spec));
+    assert!(piloted_at(out.choice.as_ref().unwrap()));
+    let out = out.result;
     assert_eq!((out.image.width, out.image.height), (w, h));
     assert!(out.image.all_valid() && out.image.mean().min_element() > 0.0);
 }
@@ -171,18 +199,31 @@ fn a_long_horizon_builds_the_importance_target_at_the_images_resolution() {
     scene.camera = scene.camera.with_resolution(w, h).unwrap();
     scene.maps.photons = 20_000;
     scene.maps.importons = 20_000;
-    let spec = AutoSpec::new(None, Some(Method::parse("pt-footprint").unwrap()));
     let o = RenderOptions {
         spp: 100_000,
         ..opts()
     };
-    let c = choose(&scene, &o, &spec);
-    eprintln!("{}: {}", c.method.name(), c.reason);
-    assert!(c.reason.contains("piloted at 96x80"), "{}", c.reason);
+    let c = choose(&scene, &o, &integrator_chosen("footprint"));
+    eprintln!("{c:?}");
     assert!(
-        c.reason.contains("importance target at 192x160"),
-        "{}",
-        c.reason
+        c.noted(|n| matches!(
+            n,
+            Note::PilotResolution {
+                pilot: (96, 80),
+                ..
+            }
+        )),
+        "{c:?}"
+    );
+    assert!(
+        c.noted(|n| matches!(
+            n,
+            Note::TargetAtImageResolution {
+                image: (192, 160),
+                ..
+            }
+        )),
+        "{c:?}"
     );
     let g = c.guidance.expect("the piloted maps are handed on");
     assert!(g.importons.as_ref().is_some_and(|m| m.map.len() > 0));
@@ -197,12 +238,12 @@ fn auto_with_a_fixed_guide_chooses_among_guided_methods() {
     scene.camera = scene.camera.with_resolution(32, 32).unwrap();
     scene.maps.photons = 20_000;
     scene.maps.importons = 20_000;
-    let spec = AutoSpec::new(None, Some(Method::parse("pt-footprint").unwrap()));
+    let spec = integrator_chosen("footprint");
     assert_eq!(spec.label, "auto-footprint");
     let o = RenderOptions { spp: 2, ..opts() };
     let c = choose(&scene, &o, &spec);
-    eprintln!("{}: {}", c.method.name(), c.reason);
-    assert_eq!(c.method.guide.name(), "footprint", "{}", c.reason);
+    eprintln!("{c:?}");
+    assert_eq!(c.method.guide.name(), "footprint", "{c:?}");
     assert!(c.guidance.is_some(), "the piloted maps are handed on");
 }
 
@@ -215,9 +256,12 @@ fn auto_without_room_for_a_pilot_renders_unguided() {
         ..opts()
     };
     let c = choose(&scene, &o, &AutoSpec::all());
-    eprintln!("{}: {}", c.method.name(), c.reason);
+    eprintln!("{c:?}");
     assert_eq!(c.method.name(), "pt-bsdf");
-    assert!(c.reason.contains("no pilot"), "{}", c.reason);
+    assert!(
+        matches!(c.decision, Decision::NoRoomForPilot { budget_s, .. } if budget_s == 1e-4),
+        "{c:?}"
+    );
 }
 
 /// Guides are piloted only where the scene is hard per sample: where the camera sees mostly
@@ -240,13 +284,21 @@ fn only_scenes_hard_per_sample_pilot_guides() {
             ..opts()
         };
         let c = choose(&scene, &o, &AutoSpec::all());
-        eprintln!("{name}: {}: {}", c.method.name(), c.reason);
-        let gated = c.reason.contains("footprint not piloted: one pass of");
-        assert_eq!(gated, !guided, "{name}: {}", c.reason);
+        eprintln!("{name}: {c:?}");
+        let gated = c.noted(|n| {
+            matches!(
+                n,
+                Note::EasyScene {
+                    guide: "footprint",
+                    ..
+                }
+            )
+        });
+        assert_eq!(gated, !guided, "{name}: {c:?}");
         let piloted = c
             .candidates
             .iter()
             .any(|c| c.method.ends_with("-footprint"));
-        assert_eq!(piloted, guided, "{name}: {}", c.reason);
+        assert_eq!(piloted, guided, "{name}: {c:?}");
     }
 }

@@ -10,6 +10,7 @@ use footprint::scene::Scene;
 use footprint::scene::effects::Effects;
 use footprint::scene::features::Specialisation;
 use footprint::scene::load::load_scene;
+use footprint_integrators::skips::Skip;
 use footprint_integrators::{Method, RenderOptions, render};
 
 fn small(name: &str) -> Scene {
@@ -89,12 +90,15 @@ fn same_image(a: &footprint_integrators::RenderResult, b: &footprint_integrators
     }
 }
 
-fn has(r: &footprint_integrators::RenderResult, what: &str) -> Option<u64> {
-    r.skipped
-        .iter()
-        .find(|s| s.contains(what))
-        .and_then(|s| s.split(' ').next()?.parse().ok())
+/// How often the render skipped work by the rule `rule` picks out (`None`: not at all).
+fn has(r: &footprint_integrators::RenderResult, rule: fn(&Skip) -> bool) -> Option<u64> {
+    r.skipped.iter().find(|s| rule(s)).map(Skip::count)
 }
+
+const EMISSION: fn(&Skip) -> bool = |s| matches!(s, Skip::EmissionLookups(_));
+const ENVIRONMENT: fn(&Skip) -> bool = |s| matches!(s, Skip::EnvironmentLookups(_));
+const LOOP: fn(&Skip) -> bool = |s| matches!(s, Skip::SpecialisedLoop { .. });
+const PASSES: fn(&Skip) -> bool = |s| matches!(s, Skip::ParticlePasses(_));
 
 /// Rule 1: without area lights, camera paths do no emission lookups at hits; the same image
 /// as with the lookups (the scene's effects made to claim an area light).
@@ -106,9 +110,9 @@ fn no_area_lights_skips_emission_lookups_and_changes_nothing() {
     for method in ["pt-bsdf", "combined-bsdf"] {
         let (a, b) = (run(&desk, method), run(&claims, method));
         same_image(&a, &b);
-        let n = has(&a, "emission lookups").expect("counted");
+        let n = has(&a, EMISSION).expect("counted");
         assert!(n > 1000, "{method}: {n} lookups skipped");
-        assert_eq!(has(&b, "emission lookups"), None);
+        assert_eq!(has(&b, EMISSION), None);
     }
 }
 
@@ -126,10 +130,10 @@ fn no_environment_skips_environment_lookups_and_changes_nothing() {
         let (a, b) = (run(&cornell, method), run(&claims, method));
         same_image(&a, &b);
         // cornell is open at the front: camera rays escape.
-        assert!(has(&a, "environment lookups").expect("counted") > 0);
-        assert_eq!(has(&b, "environment lookups"), None);
-        assert!(has(&a, "paths ran in the loop compiled for").expect("counted") > 0);
-        assert_eq!(has(&b, "paths ran in the loop compiled for"), None);
+        assert!(has(&a, ENVIRONMENT).expect("counted") > 0);
+        assert_eq!(has(&b, ENVIRONMENT), None);
+        assert!(has(&a, LOOP).expect("counted") > 0);
+        assert_eq!(has(&b, LOOP), None);
     }
 }
 
@@ -182,7 +186,7 @@ fn no_particle_surfaces_skips_the_passes_and_changes_nothing() {
             |_| {},
         );
         same_image(&skipping, &built);
-        assert_eq!(has(&skipping, "particle pass"), Some(2), "{method}");
+        assert_eq!(has(&skipping, PASSES), Some(2), "{method}");
         assert!(skipping.maps.is_empty());
         assert!(skipping.image.mean().max_element() > 0.0, "{method}: black");
     }
@@ -249,18 +253,10 @@ fn every_scene_lists_its_skips() {
             !e.area_lights,
             "{name}"
         );
+        assert_eq!(has(&r, EMISSION).is_some(), !e.area_lights, "{name}");
+        assert_eq!(has(&r, ENVIRONMENT).is_some(), !e.environment, "{name}");
         assert_eq!(
-            has(&r, "emission lookups").is_some(),
-            !e.area_lights,
-            "{name}"
-        );
-        assert_eq!(
-            has(&r, "environment lookups").is_some(),
-            !e.environment,
-            "{name}"
-        );
-        assert_eq!(
-            has(&r, "paths ran in the loop").is_some(),
+            has(&r, LOOP).is_some(),
             Specialisation::for_effects(e) != Specialisation::General,
             "{name}"
         );
@@ -270,7 +266,7 @@ fn every_scene_lists_its_skips() {
         scene.maps.importons = 2000;
         let g = run(&scene, "combined-footprint");
         assert_eq!(
-            has(&g, "particle pass").is_some(),
+            has(&g, PASSES).is_some(),
             !footprint_integrators::skips::particles_stored(&scene),
             "{name}"
         );

@@ -62,14 +62,11 @@ fn learning() -> GuideParams {
     }
 }
 
-/// Regions whose `p_BSDF` a render learned, from its run summary.
+/// Regions whose `p_BSDF` a render learned.
 fn learned_regions(r: &footprint_integrators::RenderResult) -> usize {
-    r.maps
-        .iter()
-        .find_map(|m| m.split("p_BSDF learned in ").nth(1))
-        .and_then(|rest| rest.split(' ').next())
-        .and_then(|n| n.parse().ok())
+    r.learned_p_bsdf
         .expect("the run reports the learned regions")
+        .0
 }
 
 #[allow(clippy::too_many_arguments)]

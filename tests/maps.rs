@@ -18,8 +18,8 @@ use footprint::sampling::sample_cosine_hemisphere;
 use footprint::scene::Scene;
 use footprint::scene::geometry::offset_ray_origin;
 use footprint::scene::load::load_scene;
-use footprint_integrators::integrator::path_tracing::radiance_along;
 use footprint_app::map_picture::{PICTURE_K, density_picture};
+use footprint_integrators::integrator::path_tracing::radiance_along;
 use footprint_integrators::passes::{PassSettings, light_pass, view_pass};
 use glam::Vec3;
 use std::path::PathBuf;
@@ -861,23 +861,13 @@ fn sparse_photon_maps_grow_within_a_budget() {
         ..Default::default()
     };
     let piloted = Guidance::build_within(&door, &both, &params, &pass, None, &|| None);
-    let kept = footprint_integrators::render::chosen_guidance(
-        &door,
-        &lt,
-        Some(piloted),
-        Some(10_000.0),
-        &|| None,
-    );
+    let kept =
+        footprint_integrators::auto::chosen_guidance(&door, &lt, piloted, Some(10_000.0), &|| None);
     assert_eq!(kept.photons.as_ref().unwrap().pass.stats.paths, 20_000);
     assert!(!kept.summaries.iter().any(|s| s.contains("grown")));
     let left = Some(10_000.0);
-    let g = footprint_integrators::render::chosen_guidance(
-        &door,
-        &chosen,
-        Some(plain_both),
-        left,
-        &|| None,
-    );
+    let g =
+        footprint_integrators::auto::chosen_guidance(&door, &chosen, plain_both, left, &|| None);
     assert_eq!(
         g.photons.as_ref().unwrap().pass.stats.paths,
         20_000 << footprint_integrators::maps::MAX_GROWTHS

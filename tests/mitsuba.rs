@@ -298,7 +298,7 @@ fn public_scenes_import_and_render() {
         let o = RenderOptions {
             spp: 4,
             time: None,
-            ..RenderOptions::from_scene(&s).unwrap()
+            ..RenderOptions::from_scene(&s, Method::from_scene(&s).unwrap())
         };
         let out = render(&s, &o, |_| {});
         assert!(out.image.all_valid() && out.stats.rejected == 0, "{scene}");

@@ -243,8 +243,8 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
         for (unguided, guided) in [("pt-bsdf", "pt-footprint"), ("lt-bsdf", "lt-footprint")] {
             let mut rate = [0.0f64; 2];
             for (k, m) in [unguided, guided].iter().enumerate() {
-                let mut opts = RenderOptions::from_scene(sc).map_err(anyhow::Error::msg)?;
-                opts.method = Method::parse(m).map_err(anyhow::Error::msg)?;
+                let method = Method::parse(m).map_err(anyhow::Error::msg)?;
+                let mut opts = RenderOptions::from_scene(sc, method);
                 opts.time = Some(seconds);
                 let r = render(sc, &opts, |_| {});
                 rate[k] = r.paths as f64 / r.timings.tracing.as_secs_f64();
@@ -271,8 +271,8 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
     loop_scenes.extend(extra);
     for (path, sc) in loop_scenes {
         for m in ["pt-bsdf", "lt-bsdf"] {
-            let mut opts = RenderOptions::from_scene(sc).map_err(anyhow::Error::msg)?;
-            opts.method = Method::parse(m).map_err(anyhow::Error::msg)?;
+            let method = Method::parse(m).map_err(anyhow::Error::msg)?;
+            let mut opts = RenderOptions::from_scene(sc, method);
             opts.time = Some(seconds / LOOP_ROUNDS as f64);
             // Paired runs, each round a general and a specialised one back to back: the
             // ratio of each pair, and their median and range (the VM's speed drifts by 10%
@@ -309,8 +309,7 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
     }
 
     // ---- Path samples on cornell, with each number sequence ----
-    let mut opts = RenderOptions::from_scene(&cornell).map_err(anyhow::Error::msg)?;
-    opts.method = Method::default();
+    let mut opts = RenderOptions::from_scene(&cornell, Method::default());
     opts.time = Some(seconds);
     let mut rate = Vec::new();
     for sequence in [Sequence::Independent, Sequence::Sobol] {

@@ -16,20 +16,21 @@
 //! | 32 | blake3 hash of the payload |
 //! | … | payload: the key (u32 length + UTF-8), then the light pass and the view pass |
 //!
-//! The key says what the passes depend on: the scene's content hash
-//! ([`crate::scene_hash`]), the resolution, the photon and importon path counts, the
-//! maximum depth, the seed and the soft-glossy limit. A pass is a presence byte, then its
+//! The key says what the passes depend on ([`maps_key`]): the scene's content hash
+//! ([`crate::scene_hash`]), the resolution, the maximum depth, the seed and the settings
+//! that shape the passes. A pass is a presence byte, then its
 //! statistics (paths u64, emitted 3 x f32, escaped count u32 + 3 x f32 each, seconds f64),
 //! its particles (count u64; position, direction, normal, weight as 3 x f32 each, depth
 //! u16, specular chain u8) and its emission points (count u64; position, normal 3 x f32).
 
-use footprint_integrators::maps::Passes;
-use footprint_integrators::passes::{PassOutput, PassStats};
 use anyhow::{Result, bail};
 use footprint::Rgb;
 use footprint::guide::cache::Seed;
 use footprint::guide::particle_map::ParticleInput;
 use footprint::scene::Scene;
+use footprint::schema::{Passes as Shapes, describe};
+use footprint_integrators::maps::Passes;
+use footprint_integrators::passes::{PassOutput, PassStats};
 use glam::Vec3;
 use std::path::Path;
 use std::time::Duration;
@@ -39,43 +40,19 @@ pub const VERSION: u32 = 1;
 const HEADER: usize = 8 + 4 + 8 + 32;
 
 /// What the passes depend on, as `name=value` words; a file is used only for a render whose
-/// key is equal. With several map rounds the later rounds are guided by the earlier ones'
-/// maps, so the guide parameters are part of the key too; the view pass follows the relative
-/// importance target when `relative_importance` is on (`render::with_target`), so that
-/// switch is as well.
-pub fn maps_key(
-    scene_hash: &str,
-    scene: &Scene,
-    max_depth: u32,
-    seed: u64,
-    relative_importance: bool,
-) -> String {
-    let rounds = if scene.maps.rounds > 1 {
-        let g = &scene.guide;
-        format!(
-            " rounds={} guide_params=k_p:{},k_g:{},k_r:{},p_bsdf:{},rule:{},grid:{},region_particles:{},region_seeds:{},min_depth:{}",
-            scene.maps.rounds,
-            g.k_p,
-            g.k_g_side,
-            g.k_r,
-            g.p_bsdf,
-            g.radius_rule.name(),
-            g.grid_side,
-            g.region_particles,
-            g.region_seeds,
-            g.min_depth
-        )
-    } else {
-        String::new()
-    };
+/// key is equal: the scene's content, resolution, depth and seed, and the settings the
+/// schema marks as shaping the passes (`footprint::schema::Passes`; with several map rounds
+/// the later rounds are guided by the earlier ones' maps, so the guide's settings too).
+pub fn maps_key(scene_hash: &str, scene: &Scene, max_depth: u32, seed: u64) -> String {
+    let rounds = scene.maps.rounds > 1;
+    let settings = describe(&scene.guide, &scene.maps, |s| match s.passes {
+        Shapes::Always => true,
+        Shapes::WithRounds => rounds,
+        Shapes::Never => false,
+    });
     format!(
-        "scene={scene_hash} resolution={}x{} photons={} importons={} max_depth={max_depth} seed={seed} soft_glossy_max={} relative_importance={}{rounds}",
-        scene.camera.width,
-        scene.camera.height,
-        scene.maps.photons,
-        scene.maps.importons,
-        scene.maps.soft_glossy_max,
-        if relative_importance { "on" } else { "off" }
+        "scene={scene_hash} resolution={}x{} max_depth={max_depth} seed={seed} {settings}",
+        scene.camera.width, scene.camera.height,
     )
 }
 

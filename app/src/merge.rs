@@ -9,12 +9,12 @@
 //! what differs, or which shards are missing. The result is written whole or not at all,
 //! with the header of an unsharded render (`footprint/shard` = `0/1`).
 
-use footprint_integrators::render::RenderOptions;
-use footprint_integrators::shard::PassSelection;
 use anyhow::{Context, Result, bail};
 use footprint::film::Image;
 use footprint::film::image_io::{ExrHeader, read_exr_header, read_exr_layers, write_exr};
 use footprint::scene::Scene;
+use footprint_integrators::render::RenderOptions;
+use footprint_integrators::shard::PassSelection;
 use std::path::{Path, PathBuf};
 
 /// Header keys a merge reads.
@@ -38,37 +38,17 @@ const PER_RUN: &[&str] = &[
 /// Everything besides the scene, the seed and the sample budget that the image depends on,
 /// as `name=value` words: shards merge only when these are equal.
 pub fn settings_key(opts: &RenderOptions, scene: &Scene) -> String {
-    let p = &opts.guide_params;
-    let m = &scene.maps;
     format!(
-        "method={} sequence={} film={:?} resolution={}x{} max_depth={} k_p={} k_g={} k_r={} p_bsdf={} learn_p_bsdf={} guided_rr={} guided_split={} relative_importance={} radius_rule={} grid={} cache={} region_particles={} region_seeds={} min_depth={} guided_mis={} mis_table={} raster={} photons={} importons={} max_dist={} soft_glossy_max={}",
+        "method={} sequence={} film={:?} resolution={}x{} max_depth={} rr_depth={} {} map_max_dist={}",
         opts.method.name(),
         opts.sequence.name(),
         opts.film,
         scene.camera.width,
         scene.camera.height,
         opts.max_depth,
-        p.k_p,
-        p.k_g_side,
-        p.k_r,
-        p.p_bsdf,
-        p.learn_p_bsdf,
-        p.guided_rr,
-        p.guided_split,
-        p.relative_importance,
-        p.radius_rule.name(),
-        p.grid_side,
-        if p.cache { "on" } else { "off" },
-        p.region_particles,
-        p.region_seeds,
-        p.min_depth,
-        p.guided_mis,
-        p.mis_table,
-        p.raster,
-        m.photons,
-        m.importons,
+        opts.rr_depth,
+        footprint::schema::describe(&opts.guide_params, &scene.maps, |_| true),
         scene.map_max_dist(),
-        m.soft_glossy_max
     )
 }
 

@@ -12,9 +12,11 @@
 //! * [`method`]: a method (integrator x guide), resolved from names in one place;
 //! * [`render`]: passes, threads, time budgets, progress, and the run summary;
 //! * [`shard`]: which passes a render draws (shard `i` of `N`);
+//! * [`counts`]: counters of a render's paths (guided events, fallbacks, hits, escapes);
 //! * [`skips`]: what a scene's absent effects let a render skip, and the counters.
 
 pub mod auto;
+pub mod counts;
 pub mod emit;
 pub mod integrator;
 pub mod maps;

@@ -8,6 +8,7 @@
 
 use crate::method::Method;
 use crate::passes::{PassOutput, PassSettings, grow_light_pass, light_pass, view_pass};
+use crate::skips::Skip;
 use footprint::guide::cache::{CacheStats, GuideCache, Seed};
 use footprint::guide::particle_map::{MapKind, ParticleInput, ParticleMap};
 use footprint::guide::sampler::{GuideSource, GuidedSampler};
@@ -90,7 +91,7 @@ pub struct Guidance {
     /// One line per map and cache built.
     pub summaries: Vec<String>,
     /// The passes the scene's effects made useless ([`crate::skips`], rule 4).
-    pub skipped: Vec<String>,
+    pub skipped: Vec<Skip>,
 }
 
 /// What the passes of one render produced (the particles, the other pass's seeds, the
@@ -324,7 +325,7 @@ impl Guidance {
         let (light, view) = needed_passes(method, params);
         if pass.specialise && (light || view) && !crate::skips::particles_stored(scene) {
             return Guidance {
-                skipped: vec![crate::skips::maps_skipped(light as usize + view as usize)],
+                skipped: vec![Skip::ParticlePasses(light as usize + view as usize)],
                 ..Default::default()
             };
         }

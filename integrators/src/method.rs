@@ -1,8 +1,8 @@
 //! A method: an integrator with a guide (`pt-footprint`). The one place where the names
 //! given on the command line, in scene files and in `compare --methods` are resolved
 //! against the two registries ([`crate::integrator::INTEGRATORS`],
-//! [`footprint::guide::GUIDES`]), and where `auto` (for either name, or alone) becomes the
-//! candidates a pilot chooses among ([`crate::auto`]).
+//! [`footprint::guide::GUIDES`]). `auto` in a name is understood one layer up
+//! (`crate::auto::Request`).
 
 use crate::integrator::{Integrator, find_integrator, integrator_names};
 use footprint::guide::{Guide, find_guide, guide_names};
@@ -101,52 +101,6 @@ impl Method {
         let i = resolve(&s.integrator, "integrator", "pt")?;
         let g = resolve(&s.guide, "guide", "bsdf")?;
         Self::from_names(&i, &g)
-    }
-
-    /// The method a scene file asks for, with `auto` allowed for either name: the method
-    /// (the default for an `auto` part) and, when something is `auto`, what to choose among.
-    pub fn request_from_scene(
-        scene: &Scene,
-    ) -> Result<(Self, Option<crate::auto::AutoSpec>), String> {
-        let s = &scene.settings;
-        let is_auto = |n: &Option<Named>| n.as_ref().is_some_and(|n| n.name == "auto");
-        let (ai, ag) = (is_auto(&s.integrator), is_auto(&s.guide));
-        if !ai && !ag {
-            return Ok((Self::from_scene(scene)?, None));
-        }
-        let mut plain = scene.settings.clone();
-        if ai {
-            plain.integrator = None;
-        }
-        if ag {
-            plain.guide = None;
-        }
-        let m = Self::from_settings(&plain)?;
-        let spec = crate::auto::AutoSpec::new((!ai).then_some(m), (!ag).then_some(m));
-        Ok((m, Some(spec)))
-    }
-
-    /// Parses a method of `compare --methods`: `INTEGRATOR-GUIDE`, with `auto` for either or
-    /// `auto` alone.
-    pub fn parse_request(s: &str) -> Result<(Self, Option<crate::auto::AutoSpec>), String> {
-        if s == "auto" {
-            return Ok((Self::default(), Some(crate::auto::AutoSpec::all())));
-        }
-        let (i, g) = s.split_once('-').ok_or_else(|| {
-            format!("'{s}' is not a method (expected INTEGRATOR-GUIDE, e.g. pt-footprint, or auto)")
-        })?;
-        if i != "auto" && g != "auto" {
-            return Ok((Self::from_names(i, g)?, None));
-        }
-        let base = Self::from_names(
-            if i == "auto" { "pt" } else { i },
-            if g == "auto" { "bsdf" } else { g },
-        )?;
-        let spec = crate::auto::AutoSpec::new(
-            (i != "auto").then_some(base),
-            (g != "auto").then_some(base),
-        );
-        Ok((base, Some(spec)))
     }
 
     /// `compare`'s default set: path and light tracing with each guide, and the combined

@@ -9,7 +9,7 @@
 //! the number of threads. A shard ([`RenderOptions::passes`], [`crate::shard`]) draws only
 //! the passes `k` it owns, with the same streams, so shards add up to one run.
 
-use crate::auto::AutoSpec;
+use crate::counts::GuideCounts;
 use crate::integrator::Context;
 use crate::maps::{Guidance, MapTimings};
 use crate::method::Method;
@@ -50,9 +50,6 @@ pub struct RenderOptions {
     /// Run the path loop compiled for the scene's effects (the default) or the general one:
     /// the same image for a fixed seed, bit for bit (`footprint::scene::features`).
     pub specialise: bool,
-    /// Choose the method by a pilot among these candidates (`auto`, [`crate::auto`]);
-    /// `method` is then replaced by the choice.
-    pub auto: Option<AutoSpec>,
     /// Add the integrator's second-moment layers after its layers
     /// ([`crate::integrator::Integrator::moment_layers`]; `auto`'s pilot asks for them).
     pub moments: bool,
@@ -73,7 +70,6 @@ impl Default for RenderOptions {
             seed: 0,
             passes: PassSelection::ALL,
             specialise: true,
-            auto: None,
             moments: false,
         }
     }
@@ -90,14 +86,13 @@ impl RenderOptions {
         }
     }
 
-    /// Options from the scene file's render and guide settings; an unknown integrator or
-    /// guide name is an error naming its place in the file.
-    pub fn from_scene(scene: &Scene) -> Result<Self, String> {
+    /// Options from the scene file's render and guide settings, with `method`: the scene's
+    /// own names are resolved by [`Method::from_scene`] (or, with `auto` allowed, by
+    /// `crate::auto::Request::from_scene`).
+    pub fn from_scene(scene: &Scene, method: Method) -> Self {
         let s = &scene.settings;
-        let (method, auto) = Method::request_from_scene(scene)?;
-        Ok(RenderOptions {
+        RenderOptions {
             method,
-            auto,
             film: FilmMode::Splat,
             sequence: Sequence::default(),
             guide_params: scene.guide.clone(),
@@ -109,55 +104,7 @@ impl RenderOptions {
             passes: PassSelection::ALL,
             specialise: true,
             moments: false,
-        })
-    }
-
-    /// Applies an integrator and a guide given by name (`None`: keep; `auto`: chosen by the
-    /// pilot, the other kept fixed unless it is `auto` too).
-    pub fn apply_names(
-        &mut self,
-        integrator: Option<&str>,
-        guide: Option<&str>,
-    ) -> Result<(), String> {
-        if integrator.is_none() && guide.is_none() {
-            return Ok(());
         }
-        // What is fixed so far: the previous choice, unless it was auto.
-        let fixed_i = match &self.auto {
-            Some(a) if a.label.starts_with("auto") => None,
-            _ => Some(self.method),
-        };
-        let fixed_g = match &self.auto {
-            Some(a) if a.label.ends_with("auto") => None,
-            _ => Some(self.method),
-        };
-        let i = match integrator {
-            Some("auto") => None,
-            Some(n) => Some(Method {
-                integrator: Method::integrator(n)?,
-                ..self.method
-            }),
-            None => fixed_i,
-        };
-        let g = match guide {
-            Some("auto") => None,
-            Some(n) => Some(Method {
-                guide: Method::guide(n)?,
-                ..self.method
-            }),
-            None => fixed_g,
-        };
-        match (i, g) {
-            (Some(i), Some(g)) => {
-                self.method = Method {
-                    integrator: i.integrator,
-                    guide: g.guide,
-                };
-                self.auto = None;
-            }
-            _ => self.auto = Some(AutoSpec::new(i, g)),
-        }
-        Ok(())
     }
 }
 
@@ -170,43 +117,6 @@ pub struct Timings {
     pub camera_paths: Duration,
     pub light_paths: Duration,
     pub total: Duration,
-}
-
-/// Counts of guided scattering events and of fallbacks to BSDF sampling, and of the surface
-/// hits and escaping rays of the paths (what the skip counters are made of).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct GuideCounts {
-    pub prepared: u64,
-    pub fallbacks: u64,
-    pub vertices: u64,
-    pub escapes: u64,
-}
-
-impl GuideCounts {
-    fn of(s: &SamplerState) -> Self {
-        GuideCounts {
-            prepared: s.prepared_events,
-            fallbacks: s.fallbacks,
-            vertices: s.vertices,
-            escapes: s.escapes,
-        }
-    }
-
-    fn add(&mut self, o: &GuideCounts) {
-        self.prepared += o.prepared;
-        self.fallbacks += o.fallbacks;
-        self.vertices += o.vertices;
-        self.escapes += o.escapes;
-    }
-
-    fn minus(&self, o: &GuideCounts) -> Self {
-        GuideCounts {
-            prepared: self.prepared - o.prepared,
-            fallbacks: self.fallbacks - o.fallbacks,
-            vertices: self.vertices - o.vertices,
-            escapes: self.escapes - o.escapes,
-        }
-    }
 }
 
 /// A rendered image (or three) and what it took.
@@ -231,12 +141,13 @@ pub struct RenderResult {
     pub light_guide: GuideCounts,
     /// Summaries of the maps and caches built.
     pub maps: Vec<String>,
+    /// Regions of the photon map's guide cache whose camera paths learned their own
+    /// probability of sampling the BSDF, and all regions (`learn_p_bsdf`).
+    pub learned_p_bsdf: Option<(usize, usize)>,
     /// What the scene's absent effects let the render skip, with counts ([`crate::skips`]).
-    pub skipped: Vec<String>,
-    /// The method rendered (`auto`'s choice when it chose).
+    pub skipped: Vec<crate::skips::Skip>,
+    /// The method rendered.
     pub method: Method,
-    /// Why `auto` chose it.
-    pub auto: Option<String>,
 }
 
 /// Stream domains, so that camera and light paths never share random numbers.
@@ -351,7 +262,6 @@ pub fn independent_pass(
         time: None,
         seed: opts.seed ^ stream,
         passes: crate::PassSelection::ALL,
-        auto: None,
         moments,
         ..opts.clone()
     };
@@ -385,20 +295,6 @@ pub fn render_with(
     on_progress: impl FnMut(f64),
 ) -> RenderResult {
     let start = Instant::now();
-    if let Some(spec) = &opts.auto {
-        // The pilot, then the chosen method for the rest of the budget (from `start`).
-        let choice = crate::auto::choose(scene, opts, spec);
-        let chosen = RenderOptions {
-            method: choice.method,
-            auto: None,
-            ..opts.clone()
-        };
-        let left = chosen.time.map(|t| t - start.elapsed().as_secs_f64());
-        let g = chosen_guidance(scene, &chosen, choice.guidance, left, heap);
-        let mut r = render_guided(scene, &chosen, &g, start, on_progress);
-        r.auto = Some(choice.reason);
-        return r;
-    }
     // ---- Particle maps and guide caches: only those the method uses ----
     let guidance = guidance(scene, opts, heap);
     render_guided(scene, opts, &guidance, start, on_progress)
@@ -423,29 +319,6 @@ pub fn render_guided(
         StopRule::HalfPass,
         on_progress,
     )
-}
-
-/// The maps of `auto`'s chosen method (`chosen`): the pilot's, `piloted`, with a sparse
-/// photon map grown with the `left` seconds of the budget as a fixed method's grows with
-/// its budget ([`Guidance::grow_within`]); or built now when the pilot built none for it.
-pub fn chosen_guidance(
-    scene: &Scene,
-    chosen: &RenderOptions,
-    piloted: Option<Guidance>,
-    left: Option<f64>,
-    heap: &dyn Fn() -> Option<usize>,
-) -> Guidance {
-    match (piloted, left) {
-        (Some(g), Some(left)) if scene.maps.grow => {
-            let times = (g.timings.light_pass, g.timings.view_pass);
-            let left = Duration::from_secs_f64(left.max(0.0));
-            let (method, params) = (&chosen.method, &chosen.guide_params);
-            let pass = pass_settings(scene, chosen);
-            g.grow_within(scene, method, params, &pass, None, times, left, heap)
-        }
-        (Some(g), _) => g,
-        (None, _) => guidance(scene, chosen, heap),
-    }
 }
 
 /// Renders with maps and caches built beforehand ([`guidance`]), so that several renders
@@ -715,8 +588,8 @@ fn trace(
             );
             m
         },
+        learned_p_bsdf: learner.as_ref().map(|l| l.learned_regions()),
         skipped,
         method: opts.method,
-        auto: None,
     }
 }

@@ -14,11 +14,12 @@
 //!    guided and no particle stored): a guided method runs no light pass, no view pass and
 //!    builds no map or cache; counted as the passes skipped.
 
-use crate::render::GuideCounts;
+use crate::counts::GuideCounts;
 use footprint::bsdf::Lobes;
 use footprint::guide::guides_at;
 use footprint::scene::Scene;
 use footprint::scene::features::Specialisation;
+use std::fmt;
 
 /// True when some surface of the scene stores particles and can be guided (a diffuse or soft
 /// glossy one, [`guides_at`]); rule 4 skips the maps otherwise.
@@ -35,40 +36,84 @@ pub fn particles_stored(scene: &Scene) -> bool {
         .any(|(m, _)| guides_at(&Lobes::new(m, m.kd, m.ks).lobes, scene.maps.soft_glossy_max))
 }
 
-/// The line of rule 4 when it skipped `passes` passes.
-pub fn maps_skipped(passes: usize) -> String {
-    format!(
-        "{passes} particle pass(es) and their maps and caches: no diffuse or soft glossy surface stores particles or can be guided"
-    )
+/// What a render skipped by one rule, and how often: the run summary prints it, the tests
+/// read its fields.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Skip {
+    /// Rule 1: emission lookups at camera-path hits (no area lights).
+    EmissionLookups(u64),
+    /// Rule 2: environment lookups for escaping camera rays (no environment).
+    EnvironmentLookups(u64),
+    /// Rule 3: paths that ran in the loop compiled for the scene's effects.
+    SpecialisedLoop {
+        paths: u64,
+        specialisation: Specialisation,
+    },
+    /// Rule 4: particle passes (and their maps and caches) not run.
+    ParticlePasses(usize),
 }
 
-/// The run summary's lines for rules 1-3: what was skipped and how often.
+impl Skip {
+    /// How often the rule skipped its work.
+    pub fn count(&self) -> u64 {
+        match *self {
+            Skip::EmissionLookups(n) | Skip::EnvironmentLookups(n) => n,
+            Skip::SpecialisedLoop { paths, .. } => paths,
+            Skip::ParticlePasses(n) => n as u64,
+        }
+    }
+}
+
+impl fmt::Display for Skip {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Skip::EmissionLookups(n) => {
+                write!(
+                    f,
+                    "{n} emission lookups at camera-path hits (no area lights)"
+                )
+            }
+            Skip::EnvironmentLookups(n) => write!(
+                f,
+                "{n} environment lookups for escaping camera rays (no environment)"
+            ),
+            Skip::SpecialisedLoop {
+                paths,
+                specialisation,
+            } => write!(
+                f,
+                "{paths} paths ran in the loop compiled for {} (the general loop's other branches compiled out)",
+                specialisation.name()
+            ),
+            Skip::ParticlePasses(n) => write!(
+                f,
+                "{n} particle pass(es) and their maps and caches: no diffuse or soft glossy surface stores particles or can be guided"
+            ),
+        }
+    }
+}
+
+/// What rules 1-3 skipped in a render, and how often.
 pub fn counted(
     scene: &Scene,
     specialisation: Specialisation,
     camera: Option<&GuideCounts>,
     paths: u64,
-) -> Vec<String> {
+) -> Vec<Skip> {
     let mut out = Vec::new();
     if let Some(c) = camera {
         if !scene.effects.area_lights {
-            out.push(format!(
-                "{} emission lookups at camera-path hits (no area lights)",
-                c.vertices
-            ));
+            out.push(Skip::EmissionLookups(c.vertices));
         }
         if !scene.effects.environment {
-            out.push(format!(
-                "{} environment lookups for escaping camera rays (no environment)",
-                c.escapes
-            ));
+            out.push(Skip::EnvironmentLookups(c.escapes));
         }
     }
     if specialisation != Specialisation::General {
-        out.push(format!(
-            "{paths} paths ran in the loop compiled for {} (the general loop's other branches compiled out)",
-            specialisation.name()
-        ));
+        out.push(Skip::SpecialisedLoop {
+            paths,
+            specialisation,
+        });
     }
     out
 }

@@ -122,6 +122,13 @@ impl SelectionLearner {
         }
     }
 
+    /// Regions that have learned their own probability so far, and all regions.
+    pub fn learned_regions(&self) -> (usize, usize) {
+        let sums = self.sums.lock().unwrap_or_else(|e| e.into_inner());
+        let learned = sums.iter().filter(|s| s.records >= MIN_RECORDS).count();
+        (learned, sums.len())
+    }
+
     /// Regions learned so far, and the mean and range of their probabilities.
     pub fn summary(&self) -> String {
         let sums = self.sums.lock().unwrap_or_else(|e| e.into_inner());

@@ -187,7 +187,6 @@ pub(super) fn pass_seconds(
         spp: 1,
         time: None,
         passes: crate::PassSelection::ALL,
-        auto: None,
         ..opts.clone()
     };
     (0..repeat)
