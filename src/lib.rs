@@ -14,7 +14,7 @@
 //! * [`film`]: the film, pixel filters and image files;
 //! * [`settings`]: what a scene file's `[render]`, `[maps]` and `[guide]` tables hold;
 //! * [`schema`]: the settings set by name (scene file keys, flags, sweeps, headers, keys);
-//! * foundations: [`math`], [`sampling`] (warps and discrete distributions), [`rng`],
+//! * foundations: [`keyword`] (values named by keywords), [`math`], [`sampling`] (warps and discrete distributions), [`rng`],
 //!   [`heap`] (a counting allocator), [`error`], [`atomic_file`] (whole-or-nothing writes).
 //!
 //! The transport (passes, maps, the path loop, the integrators, `auto`) is the
@@ -28,6 +28,7 @@ pub mod features;
 pub mod film;
 pub mod guide;
 pub mod heap;
+pub mod keyword;
 pub mod math;
 pub mod rng;
 pub mod sampling;

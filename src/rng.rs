@@ -27,7 +27,7 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::{Rng as _, SeedableRng};
 
 /// Which numbers the paths of a render draw (pbrt's and Mitsuba's `sampler`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Sequence {
     /// Owen-scrambled Sobol points, one per pass, padded in groups of four dimensions.
     #[default]
@@ -36,11 +36,22 @@ pub enum Sequence {
     Independent,
 }
 
-impl Sequence {
-    pub fn name(self) -> &'static str {
+impl crate::keyword::Keyword for Sequence {
+    const ALL: &'static [Self] = &[Sequence::Sobol, Sequence::Independent];
+
+    fn name(self) -> &'static str {
         match self {
             Sequence::Sobol => "sobol",
             Sequence::Independent => "independent",
+        }
+    }
+
+    fn about(self) -> &'static str {
+        match self {
+            Sequence::Sobol => {
+                "Owen-scrambled Sobol points, one per pass, padded in groups of four dimensions"
+            }
+            Sequence::Independent => "Independent uniform numbers (Mitsuba's `independent`)",
         }
     }
 }

@@ -26,7 +26,7 @@ impl SettingError {
         }
     }
 
-    /// The command-line flag of the setting (clap's naming: underscores become dashes).
+    /// The command-line flag of the setting (underscores become dashes).
     pub fn flag(&self) -> String {
         format!("--{}", self.key.replace('_', "-"))
     }
@@ -203,7 +203,7 @@ impl MapSettings {
 }
 
 /// How the footprint radius follows the directional density (docs/method.md, "Eq. 7").
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum RadiusRule {
     /// The cap's solid angle is k_r over the directional density (particles per steradian)

@@ -5,6 +5,7 @@
 use anyhow::{Context, Result, bail};
 use clap::builder::PossibleValuesParser;
 use clap::{Arg, ArgAction, ArgMatches, Args, FromArgMatches};
+use footprint::keyword::Keyword;
 use footprint::scene::Scene;
 use footprint::schema::{self, Kind, SETTINGS, Setting};
 use footprint::settings::{GuideParams, MapSettings};
@@ -13,6 +14,17 @@ use std::path::Path;
 /// The heap bytes in use (the binary's counting allocator), for the maps' summaries.
 pub fn heap_bytes() -> Option<usize> {
     Some(footprint::heap::heap_bytes())
+}
+
+/// A flag's values from a [`Keyword`] type: its names, with a line of help each.
+pub fn keyword<T: Keyword + Clone>() -> impl clap::builder::TypedValueParser<Value = T> {
+    use clap::builder::{PossibleValue, TypedValueParser};
+    PossibleValuesParser::new(
+        T::ALL
+            .iter()
+            .map(|v| PossibleValue::new(v.name()).help(v.about())),
+    )
+    .map(|name| T::from_name(&name).expect("clap accepts the listed names only"))
 }
 
 /// Scene-import flags (Mitsuba 3 XML scenes).

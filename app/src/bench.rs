@@ -4,6 +4,7 @@
 //! all threads.
 
 use anyhow::Result;
+use footprint::keyword::Keyword;
 use footprint::rng::{Rng, Sequence};
 use footprint::sampling::sample_uniform_sphere;
 use footprint::scene::Scene;

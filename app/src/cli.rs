@@ -1,6 +1,7 @@
 //! The `footprint` command line: the commands ([`crate::commands`]), the global flags, and
 //! the exit codes (1 for bad input, whether clap or the renderer finds it; 0 for `--help`).
 
+use crate::args::keyword;
 use crate::commands::{bench, compare, export, maps, merge, metrics, render};
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -21,7 +22,7 @@ pub struct Cli {
     /// Acceleration structure: Embree 3 where the system has it (`libembree3`, loaded at
     /// run time; Debian: libembree3-3), else footprint's own CWBVH [default:
     /// FOOTPRINT_ACCEL, else auto]
-    #[arg(long, global = true, value_enum)]
+    #[arg(long, global = true, value_parser = keyword::<footprint::scene::accel::Backend>())]
     accel: Option<footprint::scene::accel::Backend>,
 }
 

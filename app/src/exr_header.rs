@@ -2,6 +2,7 @@
 //! to render it again), what `footprint merge` checks, and where the time went.
 
 use crate::merge;
+use footprint::keyword::Keyword;
 use footprint::scene::Scene;
 use footprint_integrators::RenderOptions;
 use footprint_integrators::auto::Choice;

@@ -12,6 +12,7 @@
 use anyhow::{Context, Result, bail};
 use footprint::film::Image;
 use footprint::film::image_io::{ExrHeader, read_exr_header, read_exr_layers, write_exr};
+use footprint::keyword::Keyword;
 use footprint::scene::Scene;
 use footprint_integrators::render::RenderOptions;
 use footprint_integrators::shard::PassSelection;

@@ -80,7 +80,7 @@ impl SampleStats {
 
 /// How camera samples reach the film (both converge to the filter-weighted pixel values of
 /// [`filter`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum FilmMode {
     /// Splat every sample into all pixels under the filter with the light tracer's weights
@@ -95,6 +95,32 @@ pub enum FilmMode {
     /// Filter importance sampling (pbrt-v4): one sample, one pixel, weight 1; pixels stay
     /// uncorrelated (what denoisers want).
     Fis,
+}
+
+impl crate::keyword::Keyword for FilmMode {
+    const ALL: &'static [Self] = &[FilmMode::Splat, FilmMode::Weighted, FilmMode::Fis];
+
+    fn name(self) -> &'static str {
+        match self {
+            FilmMode::Splat => "splat",
+            FilmMode::Weighted => "weighted",
+            FilmMode::Fis => "fis",
+        }
+    }
+
+    fn about(self) -> &'static str {
+        match self {
+            FilmMode::Splat => {
+                "Splat every sample into all pixels under the filter with the light tracer's weights `f(x - c_p) / ∫ f(t - c_p) dt` and divide by the sample count: each pixel averages several samples, and the estimate stays unbiased (camera samples are uniform over the image, so the normalisation is known)"
+            }
+            FilmMode::Weighted => {
+                "Splat every sample into all pixels under the filter and divide by the summed filter weights (Mitsuba 3, pbrt-v3): a ratio estimator, biased by O(1/samples) where the image varies inside the filter, exact for a constant image"
+            }
+            FilmMode::Fis => {
+                "Filter importance sampling (pbrt-v4): one sample, one pixel, weight 1; pixels stay uncorrelated (what denoisers want)"
+            }
+        }
+    }
 }
 
 /// An accumulation buffer in f64, turned into an [`Image`]: plain sums divided by a count

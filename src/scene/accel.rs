@@ -8,6 +8,7 @@
 //! ([`set_backend`]), else the `FOOTPRINT_ACCEL` environment variable (`auto`, `embree`,
 //! `cwbvh`), else `auto` (Embree when it loads).
 
+use crate::keyword::Keyword;
 use crate::scene::bvh::{Bvh, BvhHit};
 use crate::scene::embree::{self, EmbreeBvh};
 use crate::scene::geometry::TriangleGeom;
@@ -15,7 +16,7 @@ use glam::Vec3;
 use std::sync::atomic::{AtomicU8, Ordering};
 
 /// Which acceleration structure scenes are built with.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Backend {
     /// Embree when the system has it (`libembree3`), else the CWBVH
     Auto,
@@ -25,13 +26,23 @@ pub enum Backend {
     Cwbvh,
 }
 
-impl Backend {
-    /// The name `--accel` and `FOOTPRINT_ACCEL` take (clap's, from the variant).
-    pub fn name(self) -> &'static str {
+impl Keyword for Backend {
+    const ALL: &'static [Self] = &[Backend::Auto, Backend::Embree, Backend::Cwbvh];
+
+    /// The name `--accel` and `FOOTPRINT_ACCEL` take.
+    fn name(self) -> &'static str {
         match self {
             Backend::Auto => "auto",
             Backend::Embree => "embree",
             Backend::Cwbvh => "cwbvh",
+        }
+    }
+
+    fn about(self) -> &'static str {
+        match self {
+            Backend::Auto => "Embree when the system has it (`libembree3`), else the CWBVH",
+            Backend::Embree => "Embree 3, loaded at run time; an error when it cannot be loaded",
+            Backend::Cwbvh => "footprint's own compressed wide BVH (obvhs)",
         }
     }
 }
@@ -49,11 +60,12 @@ pub fn set_backend(backend: Backend) {
 pub fn backend() -> Result<Backend, String> {
     match BACKEND.load(Ordering::Relaxed) {
         0 => match std::env::var("FOOTPRINT_ACCEL") {
-            Ok(s) => clap::ValueEnum::from_str(&s, false)
-                .map_err(|_| format!("FOOTPRINT_ACCEL={s}: expected one of auto, embree, cwbvh")),
+            Ok(s) => Backend::from_name(&s).ok_or_else(|| {
+                format!("FOOTPRINT_ACCEL={s}: expected one of {}", Backend::names())
+            }),
             Err(_) => Ok(Backend::Auto),
         },
-        b => Ok(<Backend as clap::ValueEnum>::value_variants()[(b - 1) as usize]),
+        b => Ok(Backend::ALL[(b - 1) as usize]),
     }
 }
 
@@ -115,16 +127,15 @@ impl Accel {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use clap::ValueEnum;
 
-    /// `name` is the name clap parses, and `set_backend` stores the index `backend` reads.
+    /// Every backend's name reads back as it, and `set_backend` stores the index
+    /// `backend` reads (`ALL` is in declaration order).
     #[test]
-    fn names_and_indices_agree_with_clap() {
-        for &b in Backend::value_variants() {
-            let clap_name = b.to_possible_value().expect("a value");
-            assert_eq!(clap_name.get_name(), b.name());
-            assert_eq!(Backend::from_str(b.name(), false), Ok(b));
-            assert_eq!(Backend::value_variants()[b as usize], b);
+    fn names_and_indices_agree() {
+        for &b in Backend::ALL {
+            assert_eq!(Backend::from_name(b.name()), Some(b));
+            assert_eq!(Backend::ALL[b as usize], b);
         }
+        assert_eq!(Backend::from_name("optix"), None);
     }
 }

@@ -5,6 +5,8 @@ use crate::args::{ImportArgs, SettingArgs, load_scene, parse_resolution, set_thr
 use crate::compare::{self, CompareSettings, Variant};
 use anyhow::{Result, bail};
 use clap::Args;
+use footprint::keyword::Keyword;
+use footprint::rng::Sequence;
 use footprint::scene::Scene;
 use footprint::settings::MapSettings;
 use footprint_integrators::auto::Request;
@@ -190,10 +192,12 @@ pub fn variants(
         let mut opts = base.clone();
         let mut maps = scene.maps.clone();
         if name == "sequence" {
-            opts.sequence = <footprint::rng::Sequence as clap::ValueEnum>::from_str(v, true)
-                .map_err(|_| {
-                    anyhow::anyhow!("--sweep: sequence '{v}' (expected sobol or independent)")
-                })?;
+            opts.sequence = Sequence::from_name(v).ok_or_else(|| {
+                anyhow::anyhow!(
+                    "--sweep: sequence '{v}' (expected one of {})",
+                    Sequence::names()
+                )
+            })?;
         } else {
             let setting = footprint::schema::find(name).ok_or_else(|| {
                 anyhow::anyhow!(

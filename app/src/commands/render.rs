@@ -1,15 +1,19 @@
 //! `footprint render`: a scene to an EXR (every layer, with a header that records how) and
 //! a PNG preview, with a fixed method or `auto`'s choice, from maps it builds or saved ones.
 
-use crate::args::{ImportArgs, SettingArgs, heap_bytes, load_scene, parse_resolution, set_threads};
+use crate::args::{
+    ImportArgs, SettingArgs, heap_bytes, keyword, load_scene, parse_resolution, set_threads,
+};
 use crate::exr_header;
 use crate::maps_file;
 use crate::scene_hash::scene_content_hash;
 use anyhow::{Result, bail};
 use clap::Args;
 use clap::builder::{PossibleValue, PossibleValuesParser};
+use footprint::film::FilmMode;
 use footprint::film::image_io::{write_exr, write_png};
 use footprint::guide::GUIDES;
+use footprint::rng::Sequence;
 use footprint::scene::Scene;
 use footprint_integrators::auto::{Choice, Request, Run, SavedMaps, render_request};
 use footprint_integrators::counts::GuideCounts;
@@ -91,13 +95,13 @@ pub struct RenderArgs {
     threads: Option<usize>,
     /// How camera samples reach the film: splat into every pixel under the filter
     /// (Mitsuba, pbrt-v3) or filter importance sampling (pbrt-v4; uncorrelated pixels)
-    #[arg(long, value_enum, default_value_t = footprint::film::FilmMode::Splat)]
-    film: footprint::film::FilmMode,
+    #[arg(long, value_parser = keyword::<FilmMode>(), default_value = "splat")]
+    film: FilmMode,
     /// The numbers camera and light paths draw (pbrt's and Mitsuba's sampler): one point
     /// of a pixel's own Owen-scrambled Sobol sequence per pass (pbrt-v4's default kind),
     /// or independent numbers (Mitsuba's `independent`). Both converge to the same image
-    #[arg(long, value_enum, default_value_t = footprint::rng::Sequence::Sobol)]
-    sequence: footprint::rng::Sequence,
+    #[arg(long, value_parser = keyword::<Sequence>(), default_value = "sobol")]
+    sequence: Sequence,
     /// Render only shard i of N (zero-based): the passes k < spp with k mod N = i, so that
     /// N shards with the same --spp (the total) and seed, put together by `footprint
     /// merge`, are the image of one run. Needs --spp, not --time
@@ -291,9 +295,7 @@ fn render(scene: &Scene, request: &Request, opts: RenderOptions, t: &Target) -> 
     };
     let run = Run {
         heap: &heap_bytes,
-        saved: t
-            .maps_file
-            .map(|_| &load as &dyn Fn(&RenderOptions) -> Result<Guidance, String>),
+        saved: t.maps_file.map(|_| &load as SavedMaps),
         ..Run::default()
     };
     // ---- auto tells its choice before the chosen method renders ----
