@@ -1,19 +1,27 @@
-//! Integrators of footprint and the driver that runs them over the film.
+//! The transport of footprint, in the paper's symmetric design (Hey & Purgathofer 2001,
+//! §2; `docs/architecture.md`):
 //!
+//! ```text
+//!   view pass  (passes/view_pass.rs)  -> importance map -> guides light paths (lt)
+//!   light pass (passes/light_pass.rs) -> photon map     -> guides camera paths (pt)
+//!   both directions, weighed by MIS                     -> the combined image
+//! ```
+//!
+//! * [`passes`]: the view pass and the light pass, and the view pass's relative importance
+//!   target;
+//! * [`maps`]: the maps and guide caches a method needs, built from the passes (one
+//!   footprint sampler, `footprint::guide`, reads either map);
+//! * [`walk`]: the one path loop (vertex, Russian roulette, splitting, spawn) that the
+//!   integrators and both passes share; [`emit`]: where light paths start;
 //! * [`integrator`]: the `Integrator` trait and its registry: path tracing, light tracing,
-//!   and the combined image;
-//! * [`auto`]: the method chosen by a short pilot;
-//! * [`walk`]: the one path loop (vertex, Russian roulette, spawn) that the integrators and
-//!   both particle passes share;
-//! * [`emit`]: where light paths start (light choice, guided emission at area lights);
-//! * [`mis`]: the combined image's weights, kept as running quantities per subpath;
-//! * [`passes`]: the light pass (photon map) and the view pass (importance map);
-//! * [`maps`]: building the maps and guide caches a method needs;
-//! * [`method`]: a method (integrator x guide), resolved from names in one place;
-//! * [`render`]: passes, threads, time budgets, progress, and the run summary;
-//! * [`shard`]: which passes a render draws (shard `i` of `N`);
-//! * [`counts`]: counters of a render's paths (guided events, fallbacks, hits, escapes);
-//! * [`skips`]: what a scene's absent effects let a render skip, and the counters.
+//!   and the combined image; [`mis`]: its weights as running quantities per subpath;
+//!   [`moments`]: the second-moment layers `auto` reads;
+//! * [`render`]: maps, passes over the film, threads, time budgets; [`shard`]: which passes
+//!   a render draws; [`counts`] and [`skips`]: what it counted and what the scene's absent
+//!   effects let it skip;
+//! * [`method`]: a method (integrator x guide) resolved from names;
+//! * [`auto`]: one layer up, the method chosen by a short pilot, then rendered;
+//! * [`window`]: per-pixel means over windows sized by their noise (the target and `auto`).
 
 pub mod auto;
 pub mod counts;
@@ -27,7 +35,6 @@ pub mod passes;
 pub mod render;
 pub mod shard;
 pub mod skips;
-pub mod target;
 pub mod walk;
 pub mod window;
 

@@ -231,7 +231,7 @@ pub fn with_built_target(
     target_scene: &Scene,
     opts: &RenderOptions,
     pass: PassSettings,
-    built: &mut Option<Option<std::sync::Arc<crate::target::ImportanceTarget>>>,
+    built: &mut Option<Option<std::sync::Arc<crate::passes::target::ImportanceTarget>>>,
 ) -> PassSettings {
     if !wants_target(opts) {
         return pass;
@@ -268,20 +268,20 @@ pub fn independent_pass(
     render_prepared(scene, &o, g, Duration::ZERO, StopRule::HalfPass, |_| {})
 }
 
-/// The relative importance target ([`crate::target`]): [`crate::target::TARGET_PASSES`]
+/// The relative importance target ([`crate::passes::target`]): [`crate::passes::target::TARGET_PASSES`]
 /// independent passes of the unguided combined image (both directions: neither misses
 /// what the other finds), its time in the target. `None` when the image is black.
 pub fn importance_target(
     scene: &Scene,
     opts: &RenderOptions,
-) -> Option<crate::target::ImportanceTarget> {
+) -> Option<crate::passes::target::ImportanceTarget> {
     let start = Instant::now();
     let method = Method::from_names("combined", "bsdf").expect("registered");
     let none = Guidance::default();
-    let passes: Vec<footprint::film::Image> = (0..crate::target::TARGET_PASSES)
+    let passes: Vec<footprint::film::Image> = (0..crate::passes::target::TARGET_PASSES)
         .map(|k| independent_pass(scene, opts, method, &none, 0x7a67 << 48 | k as u64, false).image)
         .collect();
-    let mut t = crate::target::ImportanceTarget::from_passes(&passes)?;
+    let mut t = crate::passes::target::ImportanceTarget::from_passes(&passes)?;
     t.time = start.elapsed();
     Some(t)
 }

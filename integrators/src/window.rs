@@ -1,7 +1,7 @@
 //! A noisy image's local means, each over the smallest window around its pixel whose mean
 //! is known well enough: `auto`'s metric reads the pilot's image through it
 //! ([`crate::auto`]), and the relative importance target the short pre-render's
-//! ([`crate::target`]). A pixel's own mean from a few passes is heavy-tailed, usually
+//! ([`crate::passes::target`]). A pixel's own mean from a few passes is heavy-tailed, usually
 //! below its expectation where rare bright paths carry the light; a fixed blur either
 //! keeps that noise or smears edges that are known well.
 

@@ -96,7 +96,7 @@ pub const BIAS_BLOCK_SAMPLES: f64 = 64.0;
 /// `pt-bsdf` at 3.5x `lt-footprint`'s error.
 pub const PILOT_MAX_PIXELS: usize = 128 * 128;
 /// A pilot at a lower resolution ([`PILOT_MAX_PIXELS`]) builds the view pass's importance
-/// target ([`crate::target`]) at the image's resolution when the extra passes that takes
+/// target ([`crate::passes::target`]) at the image's resolution when the extra passes that takes
 /// are predicted at most this share of the rendering time left, and the first guide's maps
 /// still fit [`FIRST_GUIDE_MAPS_SHARE`] with them (never at the footprints' cost; unless
 /// every candidate is guided, when the maps are piloted whatever they cost). The target at
