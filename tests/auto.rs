@@ -231,7 +231,7 @@ fn a_long_horizon_builds_the_importance_target_at_the_images_resolution() {
 
 /// Every candidate guided (`--integrator auto --guide footprint`) with a sample budget whose
 /// maps would not fit the guided-maps share: the maps are piloted anyway, and a footprint
-/// method is chosen (this panicked on an empty candidate list).
+/// method is chosen (the candidate list is not empty).
 #[test]
 fn auto_with_a_fixed_guide_chooses_among_guided_methods() {
     let mut scene = load_scene(&common::scene_path("cornell")).unwrap();

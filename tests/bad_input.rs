@@ -24,7 +24,8 @@ fn scene(body: &str) -> String {
 }
 
 /// Runs `footprint render` and returns (success, stderr). A failure must exit with status 1
-/// (as the README says), whether the argument parser or the renderer found the bad input.
+/// (as docs/cli.md says), whether the argument parser or the renderer
+/// found the bad input.
 fn render(dir: &Path, scene_file: &str, extra: &[&str]) -> (bool, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_footprint"))
         .arg("render")
@@ -114,7 +115,7 @@ fn toml_syntax_errors_and_unknown_keys_name_the_line() {
         let f: Vec<(&str, &str)> = f.iter().map(|(a, b)| (*a, b.as_str())).collect();
         expect_error(name, &f, &[], needles);
     };
-    // Line 3 holds the broken value.
+    // Line 4 (`fov_y`) holds the broken value.
     run(
         "syntax",
         format!("{CAMERA}").replace("fov_y = 40.0", "fov_y = = 40"),
@@ -320,7 +321,7 @@ fn io_errors_say_the_reason_once() {
     );
     let (_, err) = render(&d, "s.toml", &[]);
     assert!(err.contains("m.mtl"), "{err}");
-    assert!(err.matches("os error").count() <= 1, "{err}");
+    assert_eq!(err.matches("os error").count(), 1, "{err}");
 }
 
 #[test]

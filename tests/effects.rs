@@ -100,8 +100,9 @@ const ENVIRONMENT: fn(&Skip) -> bool = |s| matches!(s, Skip::EnvironmentLookups(
 const LOOP: fn(&Skip) -> bool = |s| matches!(s, Skip::SpecialisedLoop { .. });
 const PASSES: fn(&Skip) -> bool = |s| matches!(s, Skip::ParticlePasses(_));
 
-/// Rule 1: without area lights, camera paths do no emission lookups at hits; the same image
-/// as with the lookups (the scene's effects made to claim an area light).
+/// The rule "no area lights" (docs/effects.md): without area lights, camera paths do no
+/// emission lookups at hits; the same image as with the lookups (the scene's effects made to
+/// claim an area light).
 #[test]
 fn no_area_lights_skips_emission_lookups_and_changes_nothing() {
     let desk = small("desk");
@@ -116,7 +117,8 @@ fn no_area_lights_skips_emission_lookups_and_changes_nothing() {
     }
 }
 
-/// Rule 2: without an environment, escaping rays look nothing up.
+/// The rule "no environment" (docs/effects.md): without an environment, escaping rays look
+/// nothing up.
 #[test]
 fn no_environment_skips_environment_lookups_and_changes_nothing() {
     let cornell = small("cornell");
@@ -137,9 +139,9 @@ fn no_environment_skips_environment_lookups_and_changes_nothing() {
     }
 }
 
-/// Rule 4: a scene with no surface that stores particles (every surface a mirror) runs no
-/// particle pass for a guided method, and gives the image of a run that built the (empty)
-/// maps.
+/// The rule "no surface stores particles" (docs/effects.md): a scene with no surface that
+/// stores particles (every surface a mirror) runs no particle pass for a guided method, and
+/// gives the image of a run that built the (empty) maps.
 #[test]
 fn no_particle_surfaces_skips_the_passes_and_changes_nothing() {
     let mut mirrors = small("cornell");
@@ -260,7 +262,7 @@ fn every_scene_lists_its_skips() {
             Specialisation::for_effects(e) != Specialisation::General,
             "{name}"
         );
-        // Rule 4 on a guided method: the passes are skipped exactly where nothing stores
+        // "No surface stores particles" on a guided method: the passes are skipped exactly where nothing stores
         // particles (small maps: only whether they are built matters here).
         scene.maps.photons = 2000;
         scene.maps.importons = 2000;

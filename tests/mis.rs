@@ -19,7 +19,6 @@ use footprint::bsdf::TransportMode;
 use footprint::rng::Rng;
 use footprint::scene::Scene;
 use footprint::scene::geometry::{SurfaceHit, spawn_origin};
-use footprint::scene::light::Light;
 use footprint::scene::load::load_scene;
 use footprint::settings::GuideParams;
 use footprint_integrators::Method;
@@ -220,14 +219,5 @@ fn weights_sum_to_one_on_random_paths_in_every_bundled_scene() {
             changed * 10 > guided.len(),
             "{name}: guided weights barely differ"
         );
-    }
-}
-
-/// The light point's weight and the light-direction densities need the light's normal.
-#[allow(dead_code)]
-fn light_normal(l: &Light) -> Option<Vec3> {
-    match l {
-        Light::Area { n, .. } => Some(*n),
-        _ => None,
     }
 }

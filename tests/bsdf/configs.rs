@@ -1,0 +1,221 @@
+//! The configurations every generic BSDF test runs: diffuse, Blinn-Phong and the Mitsuba
+//! kinds, from several incident directions, flat and under tilted shading normals.
+
+use crate::{MI_ETA, MI_K, MI_KD, MI_KS, dir, flat_bsdf, glossy, material};
+use footprint::Rgb;
+use footprint::bsdf::material::{Material, MaterialKind};
+use footprint::bsdf::microfacet::Microfacet;
+use footprint::bsdf::{Bsdf, Lobes, TransportMode};
+use glam::Vec3;
+
+pub struct Config {
+    pub name: String,
+    pub bsdf: Bsdf,
+    pub wo: Vec3,
+    pub mode: TransportMode,
+    /// Cap around the mirror direction for narrow lobes, or the whole sphere.
+    pub cap: Option<f64>,
+}
+
+pub fn configs() -> Vec<Config> {
+    let flat = |l: Lobes| Bsdf::new(l, Vec3::Z, Vec3::Z);
+    // A shading normal tilted 20 degrees from the geometric one.
+    let tilted = |l: Lobes| Bsdf::new(l, dir(20.0, 90.0), Vec3::Z);
+    let mut v = Vec::new();
+    for (i, wo) in [dir(0.0, 0.0), dir(45.0, 30.0), dir(85.0, 200.0)]
+        .into_iter()
+        .enumerate()
+    {
+        v.push(Config {
+            name: format!("diffuse wo#{i}"),
+            bsdf: flat(Lobes::Diffuse {
+                kd: Rgb::splat(0.7),
+            }),
+            wo,
+            mode: TransportMode::Radiance,
+            cap: None,
+        });
+    }
+    v.push(Config {
+        name: "diffuse below".into(),
+        bsdf: flat(Lobes::Diffuse {
+            kd: Rgb::splat(0.7),
+        }),
+        wo: -dir(30.0, 10.0),
+        mode: TransportMode::Radiance,
+        cap: None,
+    });
+    for n in [1.0, 10.0, 100.0] {
+        for (i, wo) in [dir(10.0, 0.0), dir(60.0, 45.0), dir(88.0, 100.0)]
+            .into_iter()
+            .enumerate()
+        {
+            v.push(Config {
+                name: format!("glossy n={n} wo#{i}"),
+                bsdf: flat(glossy(0.3, 0.6, n)),
+                wo,
+                mode: TransportMode::Radiance,
+                cap: None,
+            });
+        }
+    }
+    for n in [1000.0f32, 10000.0] {
+        let cap = 6.0 / n.sqrt() as f64;
+        for (i, wo) in [dir(5.0, 0.0), dir(50.0, 45.0)].into_iter().enumerate() {
+            v.push(Config {
+                name: format!("pure glossy n={n} wo#{i}"),
+                bsdf: flat(glossy(0.0, 0.9, n)),
+                wo,
+                mode: TransportMode::Radiance,
+                cap: Some(cap),
+            });
+        }
+    }
+    v.push(Config {
+        name: "glossy n=20 tilted normal, importance".into(),
+        bsdf: tilted(glossy(0.4, 0.5, 20.0)),
+        wo: dir(40.0, 250.0),
+        mode: TransportMode::Importance,
+        cap: None,
+    });
+    v.push(Config {
+        name: "diffuse tilted normal, radiance".into(),
+        bsdf: tilted(Lobes::Diffuse {
+            kd: Rgb::splat(0.5),
+        }),
+        wo: dir(70.0, 90.0),
+        mode: TransportMode::Radiance,
+        cap: None,
+    });
+    v.extend(mitsuba_configs());
+    v
+}
+
+/// The incident directions of the Mitsuba kinds' configurations: near normal, oblique and
+/// grazing (cos θ = 0.05).
+fn incident_dirs() -> [Vec3; 3] {
+    [
+        dir(10.0, 30.0),
+        dir(60.0, 45.0),
+        dir(0.05f32.acos().to_degrees(), 200.0),
+    ]
+}
+
+/// Rough conductors (GGX and Beckmann, α 0.1, 0.3, 0.7), rough and smooth plastics, each from
+/// three incident directions, alternately two-sided seen from below and one-sided seen from
+/// above; one-sided ones seen from below (they scatter nothing) and a tilted shading normal.
+fn mitsuba_configs() -> Vec<Config> {
+    let mut v = Vec::new();
+    let mut push = |name: String, m: Material, wo: Vec3, cap: Option<f64>, i: usize| {
+        let two_sided = i.is_multiple_of(2);
+        let m = Material { two_sided, ..m };
+        // Two-sided ones are seen from below, where only the flip makes them reflect.
+        let wo = if two_sided {
+            Vec3::new(wo.x, wo.y, -wo.z)
+        } else {
+            wo
+        };
+        v.push(Config {
+            name: format!("{name} two_sided={two_sided}"),
+            bsdf: flat_bsdf(&m),
+            wo,
+            mode: TransportMode::Radiance,
+            cap,
+        });
+    };
+    let mut i = 0;
+    for kind in [Microfacet::Ggx, Microfacet::Beckmann] {
+        for alpha in [0.1f32, 0.3, 0.7] {
+            for (j, wo) in incident_dirs().into_iter().enumerate() {
+                let m = Material {
+                    microfacet: kind,
+                    alpha,
+                    eta: MI_ETA,
+                    k: MI_K,
+                    ks: MI_KS,
+                    ..material(MaterialKind::RoughConductor)
+                };
+                // A finer grid about the mirror direction for the narrow lobe.
+                let cap = (alpha < 0.2).then_some(1.0);
+                push(
+                    format!("roughconductor {kind:?} α={alpha} wo#{j}"),
+                    m,
+                    wo,
+                    cap,
+                    i,
+                );
+                i += 1;
+            }
+        }
+    }
+    for (kind, alpha, ni, kd, ks) in [
+        (Microfacet::Ggx, 0.2f32, 1.5f32, 0.5f32, 1.0f32),
+        (Microfacet::Beckmann, 0.5, 1.8, 0.3, 0.6),
+    ] {
+        for (j, wo) in incident_dirs().into_iter().enumerate() {
+            let m = Material {
+                microfacet: kind,
+                alpha,
+                ni,
+                kd: Rgb::splat(kd),
+                ks: Rgb::splat(ks),
+                ..material(MaterialKind::RoughPlastic)
+            }
+            .prepared();
+            push(
+                format!("roughplastic {kind:?} α={alpha} wo#{j}"),
+                m,
+                wo,
+                None,
+                i,
+            );
+            i += 1;
+        }
+    }
+    for (j, wo) in incident_dirs().into_iter().enumerate() {
+        let m = Material {
+            ni: 1.5,
+            kd: MI_KD,
+            ks: Rgb::ONE,
+            ..material(MaterialKind::Plastic)
+        };
+        push(format!("plastic wo#{j}"), m, wo, None, i);
+        i += 1;
+    }
+    for kind in [MaterialKind::RoughConductor, MaterialKind::RoughPlastic] {
+        v.push(Config {
+            name: format!("{kind:?} one-sided seen from below"),
+            bsdf: flat_bsdf(&Material {
+                alpha: 0.3,
+                kd: Rgb::splat(0.5),
+                ks: Rgb::ONE,
+                ..material(kind)
+            }),
+            wo: -dir(30.0, 10.0),
+            mode: TransportMode::Radiance,
+            cap: None,
+        });
+    }
+    v.push(Config {
+        name: "roughconductor GGX α=0.3 tilted normal, importance".into(),
+        bsdf: Bsdf::new(
+            Lobes::new(
+                &Material {
+                    alpha: 0.3,
+                    ks: Rgb::ONE,
+                    eta: MI_ETA,
+                    k: MI_K,
+                    ..material(MaterialKind::RoughConductor)
+                },
+                Rgb::ZERO,
+                Rgb::ONE,
+            ),
+            dir(20.0, 90.0),
+            Vec3::Z,
+        ),
+        wo: dir(40.0, 250.0),
+        mode: TransportMode::Importance,
+        cap: None,
+    });
+    v
+}
