@@ -60,7 +60,7 @@ fn integrator_chosen(guide: &str) -> AutoSpec {
 }
 
 /// Renders `request` as `footprint render` does, and returns the result and the choice.
-fn render_auto(
+fn rendered(
     scene: &Scene,
     o: &RenderOptions,
     request: &Request,
@@ -116,7 +116,7 @@ fn render_with_auto_keeps_the_budget_and_reports_the_choice() {
         .with_names(Some("auto"), Some("auto"))
         .unwrap();
     assert_eq!(request.label(), "auto");
-    let out = render_auto(&scene, &o, &request);
+    let out = rendered(&scene, &o, &request);
     let c = out.choice.expect("auto reports its choice");
     let r = out.result;
     eprintln!("desk: {c:?}");
@@ -180,7 +180,7 @@ fn a_large_image_is_piloted_at_a_lower_resolution_and_its_maps_guide_the_render(
         "{:?}",
         c.candidates
     );
-    let out = render_auto(&scene, &o, &Request::Auto(spec));
+    let out = rendered(&scene, &o, &Request::Auto(spec));
     assert!(piloted_at(out.choice.as_ref().unwrap()));
     let out = out.result;
     assert_eq!((out.image.width, out.image.height), (w, h));

@@ -126,6 +126,42 @@ impl SettingArgs {
     }
 }
 
+/// The settings flags as markdown lists, one per table, for `docs/cli.md` (a test keeps
+/// the file's copy equal to this).
+pub fn settings_markdown() -> String {
+    let mut out = String::new();
+    for (table, intro) in [
+        (
+            schema::Table::Guide,
+            "Guide flags ([guiding.md](guiding.md); the scene's `[guide]` table):",
+        ),
+        (
+            schema::Table::Maps,
+            "Map flags ([guiding.md](guiding.md#particle-maps); the scene's `[maps]` table):",
+        ),
+    ] {
+        out += intro;
+        out += "\n\n";
+        for s in SETTINGS.iter().filter(|s| s.table == table) {
+            let value = match s.kind {
+                Kind::Count => "N".to_string(),
+                Kind::Number => "X".to_string(),
+                Kind::Switch => "on|off".to_string(),
+                Kind::Name(names) => names.join("|"),
+            };
+            let default = schema::get(&GuideParams::default(), &MapSettings::default(), s);
+            let default = if default == "auto" {
+                String::new()
+            } else {
+                format!(" [default: {default}]")
+            };
+            out += &format!("- `--{} <{value}>`: {}.{default}\n", s.flag, s.help);
+        }
+        out += "\n";
+    }
+    out
+}
+
 /// Parses `WIDTHxHEIGHT`.
 pub fn parse_resolution(s: &str) -> std::result::Result<(u32, u32), String> {
     let (w, h) = s

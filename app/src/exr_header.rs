@@ -63,14 +63,11 @@ pub fn header(r: &Run) -> Vec<(String, String)> {
         ),
         (
             "footprint/time_split_s",
-            format!(
-                "view_pass={:.3} light_pass={:.3} map_builds={:.3} cache_builds={:.3} tracing={:.3}",
-                t.maps.view_pass.as_secs_f64(),
-                t.maps.light_pass.as_secs_f64(),
-                t.maps.map_builds.as_secs_f64(),
-                t.maps.cache_builds.as_secs_f64(),
-                t.tracing.as_secs_f64()
-            ),
+            t.split()
+                .iter()
+                .map(|(name, s)| format!("{}={s:.3}", name.replace(' ', "_")))
+                .collect::<Vec<_>>()
+                .join(" "),
         ),
         (
             "footprint/time_budget_s",

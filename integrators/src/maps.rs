@@ -92,6 +92,8 @@ pub struct Guidance {
     pub summaries: Vec<String>,
     /// The passes the scene's effects made useless ([`crate::skips`], rule 4).
     pub skipped: Vec<Skip>,
+    /// The photon paths before and after a sparse photon map grew with the budget.
+    pub grown: Option<(usize, usize)>,
 }
 
 /// What the passes of one render produced (the particles, the other pass's seeds, the
@@ -403,6 +405,7 @@ impl Guidance {
             paths: factor as usize * light.stats.paths,
             ..pass.clone()
         };
+        self.grown = Some((light.stats.paths, s.paths));
         let grown = format!("photons {} -> {} paths ({why})", light.stats.paths, s.paths);
         let before = light.stats.time;
         let light = grow_light_pass(scene, &s, &GuidedSampler::bsdf(), light);

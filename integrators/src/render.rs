@@ -119,6 +119,21 @@ pub struct Timings {
     pub total: Duration,
 }
 
+impl Timings {
+    /// The split of the run's time: view pass, light pass, map builds, cache builds and
+    /// tracing, in seconds, each with its name.
+    pub fn split(&self) -> [(&'static str, f64); 5] {
+        let m = &self.maps;
+        [
+            ("view pass", m.view_pass.as_secs_f64()),
+            ("light pass", m.light_pass.as_secs_f64()),
+            ("map builds", m.map_builds.as_secs_f64()),
+            ("cache builds", m.cache_builds.as_secs_f64()),
+            ("tracing", self.tracing.as_secs_f64()),
+        ]
+    }
+}
+
 /// A rendered image (or three) and what it took.
 #[derive(Clone, Debug)]
 pub struct RenderResult {

@@ -397,15 +397,13 @@ fn print_details(opts: &RenderOptions, result: &footprint_integrators::RenderRes
     for s in &result.skipped {
         eprintln!("skipped: {s}");
     }
-    let t = &result.timings;
-    eprintln!(
-        "time: view pass {:.2} s, light pass {:.2} s, map builds {:.2} s, cache builds {:.2} s, tracing {:.2} s",
-        t.maps.view_pass.as_secs_f64(),
-        t.maps.light_pass.as_secs_f64(),
-        t.maps.map_builds.as_secs_f64(),
-        t.maps.cache_builds.as_secs_f64(),
-        t.tracing.as_secs_f64()
-    );
+    let split: Vec<String> = result
+        .timings
+        .split()
+        .iter()
+        .map(|(name, s)| format!("{name} {s:.2} s"))
+        .collect();
+    eprintln!("time: {}", split.join(", "));
 }
 
 /// The run's one line on standard output.

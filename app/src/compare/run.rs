@@ -10,7 +10,7 @@ use super::svg::convergence_svg;
 use anyhow::{Context, Result};
 use footprint::film::image_io::write_png;
 use footprint::scene::Scene;
-use footprint_integrators::auto::{Choice, Request, Run, render_auto};
+use footprint_integrators::auto::{Choice, Request, Run, render_request};
 use footprint_integrators::maps::Guidance;
 use footprint_integrators::render::{RenderOptions, StopRule, guidance, render_prepared};
 use std::path::Path;
@@ -104,7 +104,7 @@ pub fn run(
             };
             let r0 = std::time::Instant::now();
             let (r, maps) = match &v.request {
-                Request::Auto(spec) => {
+                Request::Auto(_) => {
                     let run = Run {
                         rule: StopRule::WithinBudget,
                         ..Run::default()
@@ -118,7 +118,7 @@ pub fn run(
                             c.reason()
                         ))
                     };
-                    let out = render_auto(scene, &opts, spec, &run, &mut said, |_| {})
+                    let out = render_request(scene, &opts, &v.request, &run, &mut said, |_| {})
                         .map_err(anyhow::Error::msg)?;
                     // The pilot and the chosen method's maps are charged to the budget.
                     let charged = out

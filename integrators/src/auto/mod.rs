@@ -83,5 +83,5 @@ pub use choose::{choose, pilot_resolution};
 pub use params::*;
 pub use predict::Candidate;
 pub use rank::{GUIDED_RIVAL, SPLIT_RIVAL};
-pub use run::{Rendered, Run, SavedMaps, chosen_guidance, render_auto, render_request};
+pub use run::{Rendered, Run, SavedMaps, chosen_guidance, render_request};
 pub use spec::{AutoSpec, Request};

@@ -4,7 +4,7 @@
 
 use super::choice::Choice;
 use super::choose::choose;
-use super::spec::{AutoSpec, Request};
+use super::spec::Request;
 use crate::maps::Guidance;
 use crate::render::{
     RenderOptions, RenderResult, StopRule, guidance, pass_settings, render_prepared,
@@ -46,8 +46,9 @@ impl Default for Run<'_> {
 }
 
 /// Renders `request` with `opts` (whose `method` is replaced by the request's): a fixed
-/// method with its maps, or `auto`'s pilot and then its choice, the pilot counted in the
-/// budget. `on_choice` is told the choice before the chosen method renders.
+/// method with its maps, or `auto`'s pilot and then its choice for the rest of the budget
+/// (the pilot counts in it), with the maps the pilot built for it. `on_choice` is told the
+/// choice before the chosen method renders.
 pub fn render_request(
     scene: &Scene,
     opts: &RenderOptions,
@@ -57,52 +58,27 @@ pub fn render_request(
     on_progress: impl FnMut(f64),
 ) -> Result<Rendered, String> {
     let start = Instant::now();
-    match request {
-        Request::Fixed(method) => {
-            let o = RenderOptions {
-                method: *method,
-                ..opts.clone()
-            };
-            let g = maps_of(scene, &o, run)?;
-            let result = render_prepared(scene, &o, &g, start.elapsed(), run.rule, on_progress);
-            Ok(Rendered {
-                result,
-                choice: None,
-            })
+    let (method, piloted, choice) = match request {
+        Request::Fixed(method) => (*method, None, None),
+        Request::Auto(spec) => {
+            let mut choice = choose(scene, opts, spec);
+            on_choice(&choice);
+            (choice.method, choice.guidance.take(), Some(choice))
         }
-        Request::Auto(spec) => render_auto(scene, opts, spec, run, on_choice, on_progress),
-    }
-}
-
-/// `auto`: the pilot for `spec`'s candidates, then the chosen method for the rest of the
-/// budget (from this call).
-pub fn render_auto(
-    scene: &Scene,
-    opts: &RenderOptions,
-    spec: &AutoSpec,
-    run: &Run,
-    on_choice: &mut dyn FnMut(&Choice),
-    on_progress: impl FnMut(f64),
-) -> Result<Rendered, String> {
-    let start = Instant::now();
-    let mut choice = choose(scene, opts, spec);
-    on_choice(&choice);
-    let chosen = RenderOptions {
-        method: choice.method,
+    };
+    let o = RenderOptions {
+        method,
         ..opts.clone()
     };
-    let g = match choice.guidance.take() {
+    let g = match piloted {
         Some(piloted) => {
-            let left = chosen.time.map(|t| t - start.elapsed().as_secs_f64());
-            chosen_guidance(scene, &chosen, piloted, left, run.heap)
+            let left = o.time.map(|t| t - start.elapsed().as_secs_f64());
+            chosen_guidance(scene, &o, piloted, left, run.heap)
         }
-        None => maps_of(scene, &chosen, run)?,
+        None => maps_of(scene, &o, run)?,
     };
-    let result = render_prepared(scene, &chosen, &g, start.elapsed(), run.rule, on_progress);
-    Ok(Rendered {
-        result,
-        choice: Some(choice),
-    })
+    let result = render_prepared(scene, &o, &g, start.elapsed(), run.rule, on_progress);
+    Ok(Rendered { result, choice })
 }
 
 /// The maps of a method the pilot built none for: saved ones where given (and the method
