@@ -302,3 +302,51 @@ fn only_scenes_hard_per_sample_pilot_guides() {
         assert_eq!(piloted, guided, "{name}: {c:?}");
     }
 }
+
+/// The command line: a part named nowhere (flag or scene file) is chosen when the other is
+/// (`--integrator auto` alone chooses the guide too); a part named anywhere stays fixed;
+/// nothing named chooses both. Read back from the label the EXR header records.
+#[test]
+fn integrator_auto_alone_chooses_the_guide_too() {
+    let d = dir("auto-cli");
+    let cornell = common::scenes_dir().join("cornell/cornell.obj");
+    let scene = |render: &str| {
+        format!(
+            "[camera]\nposition = [2.78, 2.73, -8.0]\nlook_at = [2.78, 2.73, 0.0]\nfov_y = 39.0\nresolution = [16, 16]\n\n[render]\nspp = 2\n{render}\n[[mesh]]\nfile = \"{}\"\n",
+            cornell.display()
+        )
+    };
+    let label = |file: &str, render: &str, flags: &[&str]| -> String {
+        let path = d.join(file);
+        std::fs::write(&path, scene(render)).unwrap();
+        let out = d.join(format!("{file}.exr"));
+        let run = std::process::Command::new(env!("CARGO_BIN_EXE_footprint"))
+            .arg("render")
+            .arg(&path)
+            .args(flags)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        footprint::film::image_io::read_exr_text_attribute(&out, "footprint/auto")
+            .map(|a| a.split(':').next().unwrap().to_string())
+            .unwrap_or_else(|| "fixed".into())
+    };
+    assert_eq!(label("none.toml", "", &[]), "auto");
+    assert_eq!(label("i.toml", "", &["--integrator", "auto"]), "auto");
+    assert_eq!(label("g.toml", "", &["--guide", "auto"]), "auto");
+    let fixed_guide = ["--integrator", "auto", "--guide", "bsdf"];
+    assert_eq!(label("ig.toml", "", &fixed_guide), "auto-bsdf");
+    // A guide the scene names stays fixed.
+    let named = "guide = \"grid\"\n";
+    assert_eq!(
+        label("s.toml", named, &["--integrator", "auto"]),
+        "auto-grid"
+    );
+    assert_eq!(label("f.toml", named, &["--integrator", "lt"]), "fixed");
+}

@@ -54,12 +54,12 @@ pub fn guide_values() -> PossibleValuesParser {
 pub struct RenderArgs {
     /// Scene file: footprint TOML (.toml) or Mitsuba 3 XML (.xml)
     scene: PathBuf,
-    /// Integrator [default: the scene's render.integrator; when neither the integrator
-    /// nor the guide is given here or in the scene, auto; else pt]
+    /// Integrator [default: the scene's render.integrator; auto when the guide is auto or
+    /// neither is given here or in the scene; else pt]
     #[arg(long, value_parser = integrator_values())]
     integrator: Option<String>,
-    /// Direction sampler [default: the scene's render.guide; auto when neither is given;
-    /// else bsdf]
+    /// Direction sampler [default: the scene's render.guide; auto when the integrator is
+    /// auto or neither is given here or in the scene; else bsdf]
     #[arg(long, value_parser = guide_values())]
     guide: Option<String>,
     /// Samples per pixel (pt) or light paths per pixel (lt) [default: the scene's render.spp, else 16]
@@ -140,20 +140,30 @@ pub fn run(a: RenderArgs) -> Result<()> {
     let t0 = Instant::now();
     let sc = load_scene(&a.scene, &a.import, &a.settings, a.resolution)?;
     let load_time = t0.elapsed();
-    // When neither the integrator nor the guide is named here or in the scene, auto
-    // chooses both; a shard keeps the fixed default (pt, bsdf): every shard must render
-    // one method.
-    let named = a.integrator.is_some()
-        || a.guide.is_some()
-        || sc.settings.integrator.is_some()
-        || sc.settings.guide.is_some();
-    let request = if !named && a.shard.is_none() {
-        Request::Auto(footprint_integrators::auto::AutoSpec::all())
-    } else {
-        Request::from_scene(&sc)
-            .and_then(|r| r.with_names(a.integrator.as_deref(), a.guide.as_deref()))
-            .map_err(anyhow::Error::msg)?
+    // What is named, here or in the scene. A part named nowhere is chosen by auto when the
+    // other part is (`--integrator auto` alone chooses the guide too), and both are when
+    // neither is named; a shard keeps the fixed default (pt, bsdf) for a part named nowhere:
+    // every shard must render one method.
+    let scene_name = |n: &Option<footprint::settings::Named>| n.as_ref().map(|n| n.name.clone());
+    let integrator = a
+        .integrator
+        .clone()
+        .or_else(|| scene_name(&sc.settings.integrator));
+    let guide = a.guide.clone().or_else(|| scene_name(&sc.settings.guide));
+    let chooses = |n: &Option<String>| n.as_deref() == Some("auto");
+    let auto_part = a.shard.is_none() && (chooses(&integrator) || chooses(&guide));
+    let unnamed = |n: &Option<String>| {
+        let rest_auto = auto_part || (integrator.is_none() && guide.is_none() && a.shard.is_none());
+        (n.is_none() && rest_auto).then_some("auto")
     };
+    let request = Request::from_scene(&sc)
+        .and_then(|r| {
+            r.with_names(
+                a.integrator.as_deref().or(unnamed(&integrator)),
+                a.guide.as_deref().or(unnamed(&guide)),
+            )
+        })
+        .map_err(anyhow::Error::msg)?;
     let mut opts = RenderOptions::from_scene(&sc, request.fixed().unwrap_or_default());
     opts.film = a.film;
     opts.sequence = a.sequence;
