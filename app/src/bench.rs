@@ -21,8 +21,8 @@ use std::time::Instant;
 /// Paired runs (a general and a specialised one, their order alternating) of each path-loop
 /// measurement, each `seconds / LOOP_ROUNDS` long. Many short pairs rather than a few long
 /// ones: the host's speed drifts over seconds and shifts both runs of a short pair alike, so
-/// the median of the pairs' ratios settles (five 1-s pairs on the 2-core VM: medians of
-/// two runs 1.155 and 1.105 for the same binary, ranges 0.89-1.21).
+/// the median of the pairs' ratios settles where a few long pairs' does not
+/// (docs/benchmarks.md).
 const LOOP_ROUNDS: usize = 15;
 
 /// Runs every measurement; `extra` is a scene (e.g. Veach Ajar) whose guided path
@@ -276,8 +276,9 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
             let mut opts = RenderOptions::from_scene(sc, method);
             opts.time = Some(seconds / LOOP_ROUNDS as f64);
             // Paired runs, each round a general and a specialised one back to back: the
-            // ratio of each pair, and their median and range (the VM's speed drifts by 10%
-            // between runs seconds apart, which a ratio of separate bests does not cancel).
+            // ratio of each pair, and their median and range (a virtual machine's speed
+            // drifts between runs seconds apart, which a ratio of separate bests does not
+            // cancel).
             let mut best = [0.0f64; 2];
             let mut ratios = Vec::with_capacity(LOOP_ROUNDS);
             for round in 0..LOOP_ROUNDS {

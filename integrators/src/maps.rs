@@ -1,5 +1,5 @@
 //! The particle maps and guide caches a method needs (and only those), built before
-//! rendering (their pictures: [`crate::map_picture`]).
+//! rendering (their pictures: `footprint maps`, `app/src/map_picture.rs`).
 //!
 //! A guided method needs the photon map when it traces camera paths and the importance map
 //! when it traces light paths (the paper's symmetry). With the guide cache on, each map's
@@ -313,9 +313,9 @@ impl Guidance {
     /// largest (at most [`MAX_GROWTHS`]) whose passes and builds take at most
     /// [`GROWTH_SHARE`] of the budget, and the maps and caches are built again (the first
     /// build's time counts). A dense map costs nothing more. The run summary says what grew
-    /// and why. The importance map does not grow: measured on door, light tracing guided by
-    /// a grown one lost a third of its passes and had 1.26x the error (README "What moved
-    /// the error").
+    /// and why. The importance map does not grow: on door, light tracing guided by a grown
+    /// one loses a third of its passes and has more error (docs/measurements/sweeps.md,
+    /// `map_grow`).
     pub fn build_within(
         scene: &Scene,
         method: &Method,

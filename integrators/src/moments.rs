@@ -1,7 +1,8 @@
 //! Second moments of the three estimates (path tracing, light tracing, the combined image),
 //! for `auto`'s pilot (`crate::auto`). A short pilot misses a method's rare, bright paths:
-//! on door, 14 passes of unguided path tracing predicted 0.063 where 16 s measure 0.81,
-//! because the camera paths that find the light through the gap are too rare to be drawn.
+//! on door, a few passes of unguided path tracing predict a small part of its rendered
+//! error, because the camera paths that find the light through the gap are too rare to be
+//! drawn.
 //! But the combined image knows every strategy's density at every contribution
 //! ([`Strategies`]), so each estimate's second moment can be estimated from *every* path of
 //! the pilot by MIS, including the paths only another strategy finds often, and, where a
@@ -30,9 +31,9 @@
 //! with roulette (as the own layer's squares are). For the other direction's strategies the
 //! estimate's roulette on the path is unknown: their terms are taken without it, which is
 //! `S` times the term above (`g / (p_t S)` with `V = f / (p_t S)`). Without that factor a
-//! light path's own roulette inflated path tracing's MIS second moment by `1 / S`: on Veach
-//! Ajar, whose guided light paths survive down to 5%, guided path tracing's excess over its
-//! own paths read 0.6 times their second moment where 30-s renders showed none.
+//! light path's own roulette would inflate path tracing's MIS second moment by `1 / S`: on
+//! Veach Ajar, whose guided light paths can survive with small probabilities, guided path
+//! tracing would show an excess over its own paths that its renders do not have.
 //!
 //! Approximations, each the same for a method's MIS and own layers where it matters: the
 //! cross terms of one sample's contributions are left out; the densities are those the

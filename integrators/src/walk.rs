@@ -64,15 +64,16 @@ pub fn survival_probability(beta: Rgb, beta0_max: f32) -> f32 {
 }
 
 /// The least survival probability of guided Russian roulette. The rule acts at every guided
-/// vertex, so it need not cut hard: 0.05 (the throughput rule's floor) left survivors with
-/// weights up to 20x and was worse on desk and door than 0.25, 0.4 and 0.6; 0.8 costs more
-/// time than it saves (docs/method.md).
+/// vertex, so it need not cut hard: at 0.05 (the throughput rule's floor) survivors carry
+/// weights up to 20x and desk and door measure worse than at 0.25, 0.4 and 0.6; 0.8 costs
+/// more time than it saves (docs/measurements/sweeps.md, "Guided Russian roulette and
+/// splitting").
 pub const GUIDED_RR_MIN_SURVIVAL: f32 = 0.6;
 
 /// The guided rule: survival probability of a path expected to gather `c_v` from here on,
 /// whose first estimated vertex expected `c_ref`. A path is kept for sure while `c_v` is at
-/// least `c_ref` (other shares of `c_ref`, 0.3 to 3, were worse on Veach Ajar:
-/// docs/method.md).
+/// least `c_ref` (other shares of `c_ref`, 0.3 to 3, measure worse on Veach Ajar:
+/// docs/measurements/sweeps.md, "Guided Russian roulette and splitting").
 #[inline]
 pub fn guided_survival_probability(c_v: f32, c_ref: f32) -> f32 {
     (c_v / c_ref).clamp(GUIDED_RR_MIN_SURVIVAL, 1.0)

@@ -345,7 +345,7 @@ fn pilot_guides(plan: &Plan, t_pt_image: f64, pixel_ratio: f64, notes: &mut Vec<
     // every guide builds its maps and caches from them (`passes_s`: what they took).
     let share = scene.maps.rounds <= 1 && (!opts.specialise || particles_stored(scene));
     let mut passes_s = 0.0f64;
-    // The paper's footprints are piloted first (they measured ahead of the grid on door
+    // The paper's footprints are piloted first (they measure ahead of the grid on door
     // and desk, docs/measurements/door-desk.md): when the budget leaves room for one guide
     // only, it is theirs.
     let guides: Vec<&'static str> = footprint::guide::GUIDES
@@ -365,8 +365,8 @@ fn pilot_guides(plan: &Plan, t_pt_image: f64, pixel_ratio: f64, notes: &mut Vec<
     let guided_pilot = PILOT_SHARE / out.count.max(1) as f64;
     for gname in guides {
         // A particle path costs about a pass's path; the map and cache builds about as much
-        // again, and the guided pilot passes as much as both (measured on cornell, door and
-        // desk: 3-5x the passes' paths alone).
+        // again, and the guided pilot passes as much as both: four times the passes' paths
+        // alone.
         let npix = scene.camera.pixel_count() as f64;
         let maps_est = match last_guided {
             // The next guide reuses the passes.

@@ -10,12 +10,12 @@ use footprint::math::luminance;
 
 /// The image as several pilots estimate it together, for the metric's `R`: each pilot's
 /// mean weighed by its passes over its per-pass variance (inverse-variance pooling, one
-/// weight per pilot, image-wide). Pooling passes alike let the noisiest pilot set `R`: on
-/// door 20-odd unguided passes of relative variance 2650 each outweighed a guided pilot's
-/// 5 of 160, and the window `R` is read over widened until it blurred the light the guided
-/// passes carry (`lt-footprint` predicted at 2-3x its error). Weights per pilot, not per
-/// pixel: a pixel's own variance rises with its bright samples, and weighing by it would
-/// pull `R` down where rare paths carry the light.
+/// weight per pilot, image-wide). Pooling passes alike would let the noisiest pilot set
+/// `R`: on door the unguided pilot's passes, each far noisier than a guided pilot's, would
+/// outweigh them, and the window `R` is read over would widen until it blurred the light
+/// the guided passes carry (`lt-footprint` predicted above its error). Weights per pilot,
+/// not per pixel: a pixel's own variance rises with its bright samples, and weighing by it
+/// would pull `R` down where rare paths carry the light.
 pub(super) struct Pooled {
     pub(super) mean: Vec<[f64; 3]>,
     /// The variance of `mean`.
@@ -150,11 +150,9 @@ impl Metric {
 /// combined images) and the pilot's own passes but the fold's, so that no pass is weighed
 /// with an `R` its own noise raised; but the window `R` is read over is sized by the noise
 /// of every pass, the fold's included. Where light arrives by rare bright paths, the folds
-/// without one see a dim, smooth image and a small window, so the fold holding it was
-/// weighed with `1 / (R² + 0.01)` of a near-zero `R` (door: `lt-footprint` predicted at
-/// 377-575 per pass against a true 218, measured over 404 independent passes, and ranked
-/// behind `pt-footprint`; sized by every pass: 166 and 258, `pt-footprint` 306-337 against
-/// 340).
+/// without one see a dim, smooth image and a small window, which alone would weigh the fold
+/// holding it with `1 / (R² + 0.01)` of a near-zero `R` (on door, `lt-footprint` would be
+/// predicted well above its error and ranked behind `pt-footprint`).
 pub(super) fn fold_metrics(
     width: u32,
     base: &[&Moments],
@@ -212,7 +210,7 @@ mod tests {
         let folds = fold_metrics(w as u32, &[], &pilot, 1.0);
         let weight = folds[0].weight[bright][0];
         assert!(weight < 20.0, "the bright sample's weight {weight}");
-        // The other folds hold the sample in their `R`, as before.
+        // The other folds hold the sample in their `R`: a small weight too.
         assert!(folds[1].weight[bright][0] < 20.0);
     }
 
@@ -258,11 +256,11 @@ mod tests {
 
     /// Two pilots of the same image (every pixel 1): 20 passes with per-pass noise of
     /// standard deviation 3, and 5 passes with 0.3. Pooled by inverse variance, the mean's
-    /// standard error is `1 / sqrt(20 / 9 + 5 / 0.09)` = 0.132 per pixel; pooled pass by pass
-    /// (as before), `sqrt(20 * 9 + 5 * 0.09) / 25` = 0.537. Over 256 pixels of independent
-    /// noise (fixed seed) the root-mean-square error has a relative standard deviation of
-    /// about `1 / sqrt(2 * 256)` = 4.4%, so 1.2x 0.132 (4.5 of those) bounds the first and
-    /// lies far below the second.
+    /// standard error is `1 / sqrt(20 / 9 + 5 / 0.09)` = 0.132 per pixel; pooled pass by
+    /// pass (the alternative), `sqrt(20 * 9 + 5 * 0.09) / 25` = 0.537. Over 256 pixels of
+    /// independent noise (fixed seed) the root-mean-square error has a relative standard
+    /// deviation of about `1 / sqrt(2 * 256)` = 4.4%, so 1.2x 0.132 (4.5 of those) bounds
+    /// the first and lies far below the second.
     #[test]
     fn pooled_weighs_each_pilot_by_its_noise() {
         let (w, h) = (16usize, 16usize);

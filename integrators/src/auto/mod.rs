@@ -3,7 +3,8 @@
 //! combined estimate of the same paths as three layers, and measures per pixel what each
 //! direction contributes: its mean and its variance per pass. With the time one pass of each
 //! method costs, that predicts each candidate's relative MSE (`compare`'s metric) at the time
-//! left, and the rest of the budget goes to the candidate predicted best.
+//! left, and the rest of the budget goes to the candidate predicted best (docs/auto.md;
+//! how well it chooses: docs/measurements/auto.md).
 //!
 //! * **Prediction.** For candidate `m` with per-pass variance `σ²_m` per pixel and channel, a
 //!   pass time `t_m` and the time left `T`: `E_m = mean[(σ²_m t_m / T + b²_m) / (R² + 0.01)]`,
@@ -11,22 +12,23 @@
 //!   over a window around the pixel, the smallest whose standard error is at most 20% of it
 //!   ([`crate::window`]): a pixel's own pilot mean is heavy-tailed and usually
 //!   low where rare bright paths carry the light, and `1 / (R² + 0.01)` of a low `R`
-//!   overweights exactly the pixels guiding helps (door with a 3x3 window: `lt-footprint`
-//!   predicted 4x its error). `R` pools every pilot's combined image, each pilot weighed by
-//!   the inverse of its variance ([`Pooled`]), but a pilot's passes are dealt to [`FOLDS`]
-//!   folds and each fold's squared deviations are weighed with `R` without that fold's
-//!   passes (cross-fitting: a bright sample must not raise the `R` that weighs it), read
-//!   over a window sized by the noise of every pass (a fold must not be weighed with the
-//!   near-zero `R` of passes that missed its rare light, [`fold_metrics`]). Measured with
-//!   the truth's `R` (door's 900-s reference), the predictions matched 16-s renders within
-//!   1.1x (`lt-footprint` 151 per pass against 140-160).
-//! * **Paths the pilot missed.** A few passes miss a method's rare, bright paths (door's
-//!   unguided path tracing: 14 passes predicted 0.063 where 16 s measure 0.81). The pilot's
+//!   overweights exactly the pixels guiding helps (on door a 3x3 window predicts
+//!   `lt-footprint` at several times its error). `R` pools every pilot's combined image,
+//!   each pilot weighed by the inverse of its variance ([`Pooled`]), but a pilot's passes
+//!   are dealt to [`FOLDS`] folds and each fold's squared deviations are weighed with `R`
+//!   without that fold's passes (cross-fitting: a bright sample must not raise the `R` that
+//!   weighs it), read over a window sized by the noise of every pass (a fold must not be
+//!   weighed with the near-zero `R` of passes that missed its rare light,
+//!   [`fold_metrics`]). With the truth's `R` (a long reference) in its place, the
+//!   predictions match equal-time renders.
+//! * **Paths the pilot missed.** A few passes miss a method's rare, bright paths (on door,
+//!   the camera paths that find the light through the gap: unguided path tracing's few
+//!   passes predict a small part of its rendered error). The pilot's
 //!   combined image also estimates each estimate's second moment by MIS from every path,
 //!   and a guided pilot the unguided estimates' from its guided paths ([`crate::moments`]);
 //!   what exceeds the estimate's own paths' second moment is added to `σ²_m` (the reason
-//!   line says where it is most of it). On door this brings `pt-bsdf`'s prediction to
-//!   0.57-0.73.
+//!   line says where it is most of it). On door this brings `pt-bsdf`'s prediction near
+//!   its rendered error (docs/measurements/door-desk.md).
 //! * **Missing light.** A method that cannot make some paths is biased there: path tracing
 //!   misses caustics of point and spot lights (`L S+ D ... E`: a delta light behind a specular
 //!   surface), light tracing misses what the pinhole sees through a specular surface and the
@@ -53,7 +55,9 @@
 //!   renders ([`SplitPilot`], [`SPLIT_PILOT_SHARE`]): its predicted noise is the layer's
 //!   times the ratio of the two under the same weights ([`split::split_ratio`]), its time
 //!   its own passes'. On door this is the difference: light tracing gains 1.7x from splitting, path
-//!   tracing nothing, and the unsplit layers predicted a near tie (3.5x apart rendered).
+//!   tracing nothing (docs/measurements/sweeps.md, "Guided Russian roulette and splitting"),
+//!   and the unsplit layers predict a near tie of two methods about 3.3x apart rendered
+//!   (docs/measurements/door-desk.md).
 //! * **Margins.** A guided candidate must be predicted [`GUIDED_MARGIN`] times better than
 //!   BSDF sampling of its own integrator: the pilot's passes are independent samples, and
 //!   what the render's Sobol sequence gains over thousands of passes it cannot measure (it

@@ -84,8 +84,8 @@ pub(super) fn measure(
     // Missing light is measured on square blocks of pixels holding at least
     // BIAS_BLOCK_SAMPLES pilot samples: with a handful of passes a pixel's reference mean is
     // mostly noise, and the metric's weight 1 / (R^2 + 0.01) of a noisy R undercounts the
-    // light a method misses (a point-light caustic measured pixel by pixel from 4 passes read
-    // 0.12 where the block estimate reads the whole caustic).
+    // light a method misses (measured pixel by pixel from 4 passes, a point-light caustic
+    // reads a small part of what the block estimate reads).
     let side = ((BIAS_BLOCK_SAMPLES / k_ref).sqrt().ceil() as usize).max(1);
     ["combined", "pt", "lt"]
         .iter()
@@ -195,9 +195,9 @@ pub(super) fn predict_all(
     // and its missing light are weighed with the other pilots' images alone. A pilot's own
     // image is correlated with its candidates' noise (a bright sample raises both `R` and
     // the variance at its pixel, and the noisiest pixels get the least weight): with a
-    // guided pilot's own `R` its candidates came out 3-9x too low. With the other pilots'
-    // `R` alone the guided candidates, weighed with the noisy unguided image, came out
-    // 1.5-4x too high (door `lt-footprint`, Veach Ajar `pt-footprint`).
+    // guided pilot's own `R` its candidates come out several times too low. With the other
+    // pilots' `R` alone the guided candidates, weighed with the noisy unguided image, come
+    // out too high (door `lt-footprint`, Veach Ajar `pt-footprint`).
     // The pilots are pooled by inverse variance ([`Pooled`]).
     let others = |skip: Option<usize>| -> Vec<&Moments> {
         let unguided = skip.map(|_| reference);

@@ -13,8 +13,9 @@ use std::time::Instant;
 /// A guided path or light tracer piloted with passes of its own, split where its guide
 /// expects more light as it renders (guided splitting): the combined image does not split,
 /// so its pt and lt layers measure these directions unsplit, and on door light tracing
-/// gains 1.7x from splitting that the layers cannot show (the eleventh and twelfth
-/// sessions' near ties of `lt-footprint` and `pt-footprint`, 3.5x apart when rendered).
+/// gains 1.7x from splitting that the layers cannot show (docs/measurements/sweeps.md,
+/// "Guided Russian roulette and splitting"): unsplit, they predict `lt-footprint` and
+/// `pt-footprint` near a tie, about 3.3x apart rendered (docs/measurements/door-desk.md).
 pub(super) struct SplitPilot {
     pub(super) image: Moments,
     /// The fastest pass's tracing time (other jobs on the machine only slow a pass down).
@@ -68,11 +69,11 @@ impl SplitPilot {
 /// noise: `split / unsplit`, the split pilot's relative variance over the unsplit layer's
 /// under the same weights (a ratio, so that what the weights' own noise adds to both
 /// cancels: measured alone, with `R` from the combined pilots, door's split `pt-footprint`
-/// passes read 600-800 against 200-270 unsplit where splitting changes nothing), clamped
-/// to `[1 / branches, 1]` against the noise of a few passes: a pass of more branches is
-/// never noisier, and one split into n branches divides a pass's variance by at most n
-/// (all of it arising after the split). Nested splits at later vertices could divide it
-/// by more; the bound then only makes the prediction cautious. 1 when the layer measured
+/// passes read several times the unsplit layer's noise where splitting changes nothing),
+/// clamped to `[1 / branches, 1]` against the noise of a few passes: a pass of more
+/// branches is never noisier, and one split into n branches divides a pass's variance by at
+/// most n (all of it arising after the split). Nested splits at later vertices could divide
+/// it by more; the bound then only makes the prediction cautious. 1 when the layer measured
 /// no variance.
 pub(super) fn split_ratio(unsplit: f64, split: f64, branches: u32) -> f64 {
     if unsplit > 0.0 && split.is_finite() {

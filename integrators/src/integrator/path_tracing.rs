@@ -439,8 +439,8 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
     // ---- Guided splitting: each branch starts from the same running weights ----
     type Branch = S;
     /// Not while learning (a learning record follows one path's vertices), nor in the
-    /// combined image (its weights do not count branches; it measured 1.07-1.1x worse with
-    /// them on door and desk, docs/method.md).
+    /// combined image (its weights do not count branches; it measures worse with them on
+    /// door and desk, docs/measurements/sweeps.md, "Guided Russian roulette and splitting").
     fn splits(&self) -> bool {
         !self.learning.on && !S::ACTIVE
     }
