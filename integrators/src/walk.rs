@@ -9,6 +9,14 @@
 //! light) to it: the first hit has depth 1. The walk visits vertices up to
 //! `max_vertex_depth` and scatters only from vertices below it.
 //!
+//! **Thin dielectric sheets** (Mitsuba `thindielectric`) pass light in a straight line.
+//! Sampling at a sheet chooses reflection (a mirror vertex like any other) or straight
+//! transmission; a transmitted path goes on without the visitors seeing the sheet: for them
+//! the path arrives from the vertex before it, with that vertex's direction density, as a
+//! connection through the sheet sees it (`Scene::transmittance` multiplies by what
+//! sampling at the sheet gives in expectation). The sheet still counts as a segment, in the
+//! walk as in a connection, so that every strategy makes the same paths.
+//!
 //! **Specialised once per render.** The loop and its visitors are generic over a
 //! [`Features`] type (the visitor's [`Visitor::F`]): the effects the scene can show. A render
 //! picks the narrowest compiled loop for its scene's effect set
@@ -87,6 +95,10 @@ pub struct Vertex {
     pub wo: Vec3,
     /// Segments from the walk's source to this vertex.
     pub depth: u32,
+    /// Vertices from the walk's source to this one, this one included, not counting thin
+    /// sheets passed straight through: the vertex's index in the path the MIS weights see
+    /// (`depth` without sheets).
+    pub index: u32,
     /// Throughput arriving at this vertex.
     pub beta: Rgb,
     /// The product of the Russian roulette survival probabilities on the way here (what
@@ -202,6 +214,7 @@ pub fn walk<'a, V: Visitor>(
         expected_ref: 0.0,
         survival: 1.0,
         depth: 1,
+        index: 1,
     };
     walk_from(scene, start, sampler, state, rng, visitor, path);
 }
@@ -219,8 +232,9 @@ struct PathState {
     expected_ref: f32,
     /// The product of the roulette's survival probabilities so far ([`Vertex::survival`]).
     survival: f32,
-    /// Depth of the vertex the next segment reaches.
+    /// Depth of the vertex the next segment reaches, and its index ([`Vertex::index`]).
     depth: u32,
+    index: u32,
 }
 
 /// Random streams of the branches of a split after the first (which keeps the path's own).
@@ -251,9 +265,34 @@ fn walk_from<'a, V: Visitor>(
             hit,
             wo: -p.dir,
             depth,
+            index: p.index,
             beta: p.beta,
             survival: p.survival,
         };
+        // ---- A thin dielectric sheet: passed straight through, or a mirror vertex ----
+        let mut drawn = None;
+        if V::F::SPECULAR && scene.effects.thin_glass && v.bsdf.is_thin() {
+            if depth == start.max_vertex_depth {
+                return;
+            }
+            rng.start_vertex(depth);
+            let (u_lobe, u) = v.bsdf.draw_numbers(rng);
+            let s = v.bsdf.sample_with::<V::F>(v.wo, u_lobe, u, start.mode);
+            let Some(s) = s else { return };
+            if s.wi.dot(v.hit.ng) * v.wo.dot(v.hit.ng) < 0.0 {
+                // Through: the sheet is a segment of the path, but the visitors see the path
+                // go on from the vertex it arrived from, as a connection through the sheet
+                // sees it (`Scene::transmittance`).
+                p.beta *= s.weight;
+                p.beta_rr *= s.weight;
+                if !p.beta.is_finite() || p.beta.max_element() <= 0.0 {
+                    return;
+                }
+                p.origin = spawn_origin(v.hit.p, v.hit.ng, s.wi);
+                continue;
+            }
+            drawn = Some(s.into());
+        }
         // ---- The next direction, prepared before the visitor's work at the vertex ----
         // (the guide's region is looked up and its row sums fetched while the visitor
         // connects to the camera; the visitor does not read the prepared state)
@@ -310,16 +349,18 @@ fn walk_from<'a, V: Visitor>(
                     &mut own
                 };
                 let mut q = p;
-                if scatter(sampler, state, r, visitor, &v, &at, &mut q, share) {
+                if scatter(sampler, state, r, visitor, &v, &at, &mut q, share, None) {
                     q.depth = depth + 1;
+                    q.index = v.index + 1;
                     walk_from(scene, start, sampler, state, r, visitor, q);
                 }
             }
             return;
         }
-        if !scatter(sampler, state, rng, visitor, &v, &at, &mut p, 1.0) {
+        if !scatter(sampler, state, rng, visitor, &v, &at, &mut p, 1.0, drawn) {
             return;
         }
+        p.index += 1;
 
         // ---- Russian roulette ----
         let q = match expected {
@@ -337,8 +378,9 @@ fn walk_from<'a, V: Visitor>(
     }
 }
 
-/// Samples the next direction at `v` and moves `p` along it with `share` of the
-/// throughput (one branch of `1 / share`); false when the path ends there.
+/// Samples the next direction at `v` (or takes the one `drawn` there) and moves `p` along
+/// it with `share` of the throughput (one branch of `1 / share`); false when the path ends
+/// there.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn scatter<'a, V: Visitor>(
@@ -350,8 +392,9 @@ fn scatter<'a, V: Visitor>(
     at: &ScatterPoint,
     p: &mut PathState,
     share: f32,
+    drawn: Option<DirectionSample>,
 ) -> bool {
-    let Some(s) = sampler.sample_with::<V::F>(at, state, rng) else {
+    let Some(s) = drawn.or_else(|| sampler.sample_with::<V::F>(at, state, rng)) else {
         return false;
     };
     p.beta *= s.weight * share;

@@ -279,6 +279,34 @@ impl Bsdf {
         })
     }
 
+    /// True for a thin dielectric sheet: light passes it in a straight line, so a
+    /// connection may cross it ([`Bsdf::pass_through`]).
+    #[inline]
+    pub fn is_thin(&self) -> bool {
+        matches!(self.lobes, Lobes::ThinGlass { .. })
+    }
+
+    /// What a thin dielectric sheet lets through along `-wo` (arriving from `wo`): the
+    /// straight transmission's weight times the probability [`Bsdf::sample`] gives it,
+    /// `(1 - R') · Tf` with `R' = 2R / (1 + R)` the sheet's reflectance (its inner
+    /// reflections summed). The expectation of sampling at the sheet, taken exactly: a
+    /// connection through the sheet multiplies by it. Zero where the sampling would refuse
+    /// (the shading normal on the other side), and for every other kind of surface.
+    #[inline]
+    pub fn pass_through(&self, wo: Vec3) -> Rgb {
+        let Lobes::ThinGlass { eta, tf, .. } = self.lobes else {
+            return Rgb::ZERO;
+        };
+        let side = if wo.dot(self.ng) >= 0.0 { 1.0 } else { -1.0 };
+        let cos = self.frame.to_local(wo).z * side;
+        if cos <= 0.0 {
+            return Rgb::ZERO;
+        }
+        let r = fresnel_dielectric(cos, eta);
+        let r = if r < 1.0 { 2.0 * r / (1.0 + r) } else { 1.0 };
+        tf * (1.0 - r)
+    }
+
     /// Samples `wi` given `wo`, with one number to choose a lobe and two for the direction.
     pub fn sample(
         &self,

@@ -18,7 +18,7 @@
 //!   and turned into a distribution at this very point.
 
 use crate::Rgb;
-use crate::bsdf::{Bsdf, Lobes, TransportMode};
+use crate::bsdf::{Bsdf, BsdfSample, Lobes, TransportMode};
 use crate::features::{Features, General};
 use crate::guide::cache::{GuideCache, Region, RegionDistribution};
 use crate::guide::channel_mix::ChannelMix;
@@ -112,6 +112,20 @@ pub struct DirectionSample {
     pub delta: bool,
     /// Drawn from a cached region's mixture: what the learned selection probability needs.
     pub guided: Option<GuidedDraw>,
+}
+
+impl From<BsdfSample> for DirectionSample {
+    /// A direction drawn by BSDF sampling alone.
+    fn from(s: BsdfSample) -> Self {
+        DirectionSample {
+            wi: s.wi,
+            pdf_w: s.pdf_w,
+            weight: s.weight,
+            rr_weight: s.weight,
+            delta: s.delta,
+            guided: None,
+        }
+    }
 }
 
 /// How a guided direction was drawn (for [`SelectionLearner`]).
@@ -388,15 +402,10 @@ impl<'a> GuidedSampler<'a> {
         };
         let Some((dist, mix)) = guide else {
             let (u_lobe, u) = at.bsdf.draw_numbers(rng);
-            let s = at.bsdf.sample_with::<F>(at.wo, u_lobe, u, at.mode)?;
-            return Some(DirectionSample {
-                wi: s.wi,
-                pdf_w: s.pdf_w,
-                weight: s.weight,
-                rr_weight: s.weight,
-                delta: s.delta,
-                guided: None,
-            });
+            return at
+                .bsdf
+                .sample_with::<F>(at.wo, u_lobe, u, at.mode)
+                .map(Into::into);
         };
         let p = state.p_bsdf;
         let (wi, guide_pdf) = if rng.uniform() < p {

@@ -12,6 +12,9 @@ pub struct Effects {
     pub glossy: bool,
     pub specular_reflection: bool,
     pub refraction: bool,
+    /// Thin dielectric sheets (Mitsuba `thindielectric`): connections pass through them
+    /// with their transmittance ([`crate::scene::Scene::transmittance`]).
+    pub thin_glass: bool,
     /// Transmission that changes colour (glass with a non-grey `Tf`).
     pub coloured_filtering: bool,
     pub textures: bool,
@@ -67,6 +70,7 @@ impl Effects {
                 MaterialKind::ThinGlass => {
                     e.specular_reflection = true;
                     e.refraction = true;
+                    e.thin_glass = true;
                     let t = m.tf;
                     e.coloured_filtering |= t.max_element() - t.min_element() > 1e-4;
                 }

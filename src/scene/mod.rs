@@ -20,6 +20,7 @@ pub mod toml_file;
 use crate::bsdf::material::{Material, MaterialKind};
 use crate::bsdf::{Bsdf, Lobes, SurfaceLobes};
 use crate::features::{Features, General};
+use crate::math::Rgb;
 use crate::sampling::Distribution1D;
 use crate::scene::accel::Accel;
 use crate::scene::camera::Camera;
@@ -299,10 +300,17 @@ impl Scene {
         Bsdf::new(Lobes::new(m, kd, ks), hit.ns, hit.ng)
     }
 
-    /// Shadow ray from surface point `p` (normal `ng`) to `target`; `target_n` is the normal
-    /// at the target when it lies on a surface (area light), `None` for a point.
+    /// The shadow ray from surface point `p` (normal `ng`) to `target` (`target_n` the normal
+    /// at the target when it lies on a surface, `None` for a point): origin, unit direction and
+    /// length, both ends offset off their surfaces; `None` for a degenerate segment.
     #[inline]
-    pub fn visible(&self, p: Vec3, ng: Vec3, target: Vec3, target_n: Option<Vec3>) -> bool {
+    fn shadow_segment(
+        &self,
+        p: Vec3,
+        ng: Vec3,
+        target: Vec3,
+        target_n: Option<Vec3>,
+    ) -> Option<(Vec3, Vec3, f32)> {
         let d = target - p;
         let o = spawn_origin(p, ng, d);
         let end = match target_n {
@@ -312,9 +320,57 @@ impl Scene {
         let v = end - o;
         let dist = v.length();
         if dist <= 0.0 || !dist.is_finite() {
-            return false;
+            return None;
         }
-        self.bvh.unoccluded(o, v / dist, dist * (1.0 - 1e-5))
+        Some((o, v / dist, dist * (1.0 - 1e-5)))
+    }
+
+    /// Shadow ray from surface point `p` (normal `ng`) to `target`; `target_n` is the normal
+    /// at the target when it lies on a surface (area light), `None` for a point.
+    #[inline]
+    pub fn visible(&self, p: Vec3, ng: Vec3, target: Vec3, target_n: Option<Vec3>) -> bool {
+        self.shadow_segment(p, ng, target, target_n)
+            .is_some_and(|(o, dir, t_max)| self.bvh.unoccluded(o, dir, t_max))
+    }
+
+    /// The fraction of light that goes from `p` (normal `ng`) to `target` (normal `target_n`
+    /// on a surface, `None` for a point) in a straight line: zero when an opaque surface is
+    /// in the way or more than `max_sheets` thin dielectric sheets are, else the product of
+    /// the sheets' [`Bsdf::pass_through`], and the number of sheets crossed (each a segment
+    /// of the path, as sampling through it makes). Without thin sheets in the scene, the
+    /// shadow ray of [`Scene::visible`].
+    pub fn transmittance(
+        &self,
+        p: Vec3,
+        ng: Vec3,
+        target: Vec3,
+        target_n: Option<Vec3>,
+        max_sheets: u32,
+    ) -> (Rgb, u32) {
+        if !self.effects.thin_glass {
+            let v = self.visible(p, ng, target, target_n);
+            return (if v { Rgb::ONE } else { Rgb::ZERO }, 0);
+        }
+        let mut t = Rgb::ONE;
+        let (mut from, mut from_n) = (p, ng);
+        for sheets in 0..=max_sheets {
+            let Some((o, dir, t_max)) = self.shadow_segment(from, from_n, target, target_n) else {
+                return (Rgb::ZERO, 0);
+            };
+            let Some(hit) = self.intersect(o, dir, t_max) else {
+                return (t, sheets);
+            };
+            if sheets == max_sheets {
+                break;
+            }
+            let bsdf = self.bsdf(&hit);
+            t *= bsdf.pass_through(-dir);
+            if t.max_element() <= 0.0 {
+                break;
+            }
+            (from, from_n) = (hit.p, hit.ng);
+        }
+        (Rgb::ZERO, 0)
     }
 
     /// Shadow ray from surface point `p` (normal `ng`) to the camera position.

@@ -110,13 +110,13 @@ impl LightShare for LightMis<'_> {
         LightMis::light_seen(self, scene, to_camera)
     }
     fn arrive(&mut self, light: &Light, v: &Vertex) {
-        LightMis::arrive(self, light, v.depth, -v.wo, v.hit.p, v.hit.ng);
+        LightMis::arrive(self, light, v.index, -v.wo, v.hit.p, v.hit.ng);
     }
     fn connection(&self, scene: &Scene, v: &Vertex, wi: Vec3) -> Strategies {
-        self.camera_connection(scene, v.depth, &v.bsdf, v.hit.p, v.hit.ng, wi)
+        self.camera_connection(scene, v.index, &v.bsdf, v.hit.p, v.hit.ng, wi)
     }
     fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
-        LightMis::scattered(self, v.depth, v.hit.p, v.hit.ng, &v.bsdf, s.delta);
+        LightMis::scattered(self, v.index, v.hit.p, v.hit.ng, &v.bsdf, s.delta);
     }
 }
 
@@ -197,12 +197,14 @@ pub fn trace<'a, F: Features, W: LightShare>(
         let cos_l = em.n.map(|n| n.dot(conn.dir_to_camera)).unwrap_or(1.0);
         if cos_l > 0.0 {
             let le = light.emitted(conn.dir_to_camera);
-            let visible = match em.n {
-                Some(n) => scene.visible_from_camera(em.p, n),
-                None => scene.visible(cam.position, cam.frame.z, em.p, None),
+            // One segment, and one more per thin sheet passed through.
+            let sheets = ctx.max_depth.saturating_sub(1);
+            let (t, _) = match em.n {
+                Some(n) => scene.transmittance(em.p, n, cam.position, None, sheets),
+                None => scene.transmittance(cam.position, cam.frame.z, em.p, None, sheets),
             };
-            if le.max_element() > 0.0 && visible {
-                let v = le * (cos_l * conn.we_geom / (em.pdf_pos * pmf));
+            if le.max_element() > 0.0 && t.max_element() > 0.0 {
+                let v = le * t * (cos_l * conn.we_geom / (em.pdf_pos * pmf));
                 lt.splat(&cam.filter, w, h, conn.raster, v);
                 if let Some(s) = share.as_mut() {
                     let st = weights.light_seen(scene, conn.dir_to_camera);
@@ -231,6 +233,7 @@ pub fn trace<'a, F: Features, W: LightShare>(
     };
     let mut v = LightVisitor::<W, F> {
         scene,
+        max_depth: ctx.max_depth,
         light,
         lt,
         share,
@@ -243,6 +246,8 @@ pub fn trace<'a, F: Features, W: LightShare>(
 
 struct LightVisitor<'s, 'f, W, F> {
     scene: &'s Scene,
+    /// Most segments of a path (a connection through thin sheets counts each).
+    max_depth: u32,
     light: &'s Light,
     lt: &'f mut SplatList,
     /// The second estimate's splats and weights.
@@ -271,10 +276,16 @@ impl<W: LightShare, F: Features> Visitor for LightVisitor<'_, '_, W, F> {
         };
         let wi = conn.dir_to_camera;
         let f = v.bsdf.eval_with::<F>(v.wo, wi, TransportMode::Importance);
-        if f.max_element() <= 0.0 || !scene.visible_from_camera(v.hit.p, v.hit.ng) {
+        if f.max_element() <= 0.0 {
             return;
         }
-        let value = v.beta * f * (wi.dot(v.hit.ns).abs() * conn.we_geom);
+        // The connection closes depth + 1 segments, and one more per thin sheet.
+        let sheets = self.max_depth.saturating_sub(v.depth + 1);
+        let (t, _) = scene.transmittance(v.hit.p, v.hit.ng, cam.position, None, sheets);
+        if t.max_element() <= 0.0 {
+            return;
+        }
+        let value = v.beta * f * t * (wi.dot(v.hit.ns).abs() * conn.we_geom);
         let (w, h) = (cam.width, cam.height);
         self.lt.splat(&cam.filter, w, h, conn.raster, value);
         if let Some(s) = self.share.as_mut() {

@@ -112,18 +112,18 @@ impl CameraShare for () {
 impl CameraShare for CameraMis<'_> {
     const ACTIVE: bool = true;
     fn arrive(&mut self, scene: &Scene, v: &Vertex) {
-        CameraMis::arrive(self, scene, v.depth, -v.wo, v.hit.p, v.hit.ng);
+        CameraMis::arrive(self, scene, v.index, -v.wo, v.hit.p, v.hit.ng);
     }
     fn light_hit(&self, scene: &Scene, li: u32, v: &Vertex) -> Strategies {
-        CameraMis::light_hit(self, scene, li, v.depth, v.wo, v.hit.p)
+        CameraMis::light_hit(self, scene, li, v.index, v.wo, v.hit.p)
     }
     fn nee(&self, scene: &Scene, li: u32, v: &Vertex, ls: &LightSample) -> Strategies {
         CameraMis::nee(
-            self, scene, li, v.depth, &v.bsdf, v.hit.p, v.hit.ng, v.wo, ls,
+            self, scene, li, v.index, &v.bsdf, v.hit.p, v.hit.ng, v.wo, ls,
         )
     }
     fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
-        CameraMis::scattered(self, v.depth, v.hit.p, v.hit.ng, &v.bsdf, s.delta);
+        CameraMis::scattered(self, v.index, v.hit.p, v.hit.ng, &v.bsdf, s.delta);
     }
 }
 
@@ -197,6 +197,7 @@ pub fn trace<'a, F: Features, S: CameraShare>(
 ) -> CameraContribution {
     let mut v = CameraVisitor::<S, F> {
         scene,
+        max_depth,
         out: CameraContribution::default(),
         share,
         learning: Learning {
@@ -221,6 +222,8 @@ pub fn trace<'a, F: Features, S: CameraShare>(
 
 struct CameraVisitor<'s, S, F> {
     scene: &'s Scene,
+    /// Most segments of a path (a connection through thin sheets counts each).
+    max_depth: u32,
     out: CameraContribution,
     share: S,
     learning: Learning,
@@ -396,14 +399,21 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
                 .eval_and_lambert_pdf_with::<F>(v.wo, ls.wi, TransportMode::Radiance);
         // Point and spot lights are the only delta lights.
         let delta = F::DELTA_LIGHTS && ls.delta;
-        if f.max_element() <= 0.0 || !scene.visible(v.hit.p, v.hit.ng, ls.p, ls.n) {
+        if f.max_element() <= 0.0 {
+            return;
+        }
+        // The connection closes a path of depth + 1 segments, and one more per thin sheet it
+        // passes through.
+        let sheets = self.max_depth.saturating_sub(v.depth + 1);
+        let (t, _) = scene.transmittance(v.hit.p, v.hit.ng, ls.p, ls.n, sheets);
+        if t.max_element() <= 0.0 {
             return;
         }
         let cos = ls.wi.dot(v.hit.ns).abs();
         let contrib = if delta {
-            v.beta * f * ls.li * (cos / pmf)
+            v.beta * f * t * ls.li * (cos / pmf)
         } else {
-            v.beta * f * ls.li * (cos / (ls.pdf_w * pmf))
+            v.beta * f * t * ls.li * (cos / (ls.pdf_w * pmf))
         };
         // The path tracer's own weight: NEE against hitting the light by the sampler.
         let w_pt = if delta {
