@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Image means of scenes/panes (a room seen only through two coloured thin-glass panes):
-Mitsuba 3's `path` against footprint's path tracer, light tracer and combined image, each
-over several seeds, with the standard error of the mean. Mitsuba blocks connections at thin
-sheets and footprint passes them with their transmittance; the means must agree.
+Mitsuba 3's `path` and `ptracer` against footprint's path tracer, light tracer and combined
+image, each over several seeds, with the standard error of the mean. Mitsuba blocks connections at thin
+sheets (its light tracer sees nothing through them) and footprint passes them with their
+transmittance; footprint's means must agree with Mitsuba's `path`.
 
     python3 scripts/thin_glass_means.py [--spp 64] [--seeds 8] [--footprint target/release/footprint]
 
@@ -36,6 +37,10 @@ def main():
     rows = []
     means = [np.array(mi.render(scene, seed=s, spp=a.spp)).reshape(-1, 3).mean(0) for s in range(a.seeds)]
     rows.append(("Mitsuba 3 path", *mean_and_se(means)))
+    ptracer = mi.load_dict({"type": "ptracer", "max_depth": 8})
+    means = [np.array(mi.render(scene, integrator=ptracer, seed=s, spp=a.spp)).reshape(-1, 3).mean(0)
+             for s in range(a.seeds)]
+    rows.append(("Mitsuba 3 ptracer", *mean_and_se(means)))
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "r.exr")
         for method in ["pt-bsdf", "lt-bsdf", "combined-bsdf"]:
