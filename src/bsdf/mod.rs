@@ -40,7 +40,12 @@
 //! Sidedness: two-sided surfaces reflect on whichever side `wo` is (the frame is flipped to
 //! it); a one-sided surface (Mitsuba's BSDFs unless wrapped in `twosided`) is black unless
 //! both directions are above the shading normal, as Mitsuba evaluates it. Glass and thin
-//! glass scatter on both sides regardless.
+//! glass scatter on both sides regardless. The front is the side the shading normal faces,
+//! also where a mesh is wound against its vertex normals (`SurfaceHit::facing_ng`). Glass
+//! reads wo's side in the shading frame, as Mitsuba's `dielectric` (`cos θ_i`): near a smooth
+//! mesh's silhouette, where wo is above the geometric normal and below the shading normal,
+//! the path arrives from inside, and the direction the shading frame gives stands even across
+//! the geometric plane.
 //!
 //! The lobes a material resolves to at a point, with their `f` and densities in the local
 //! frame, are in `lobes.rs` (the Blinn lobe in `blinn.rs`); the BSDF at a point, which adds

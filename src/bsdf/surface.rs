@@ -265,8 +265,12 @@ impl Bsdf {
         transmitted: bool,
     ) -> Option<BsdfSample> {
         let wi = self.frame.to_world(Vec3::new(li.x, li.y, li.z * side));
+        // A reflection stays on wo's side of the geometric normal and a transmission crosses
+        // it; but glass, as Mitsuba's `dielectric`, keeps the direction its shading frame
+        // gives, on either side (near a smooth mesh's silhouette): the path goes on from there.
         let crosses = wi.dot(self.ng) * wo.dot(self.ng);
-        if (transmitted && crosses >= 0.0) || (!transmitted && crosses <= 0.0) {
+        let glass = matches!(self.lobes, Lobes::Glass { .. });
+        if !glass && ((transmitted && crosses >= 0.0) || (!transmitted && crosses <= 0.0)) {
             return None;
         }
         let corr = self.adjoint_correction(wo, wi, mode);
@@ -367,7 +371,16 @@ impl Bsdf {
     ) -> Option<BsdfSample> {
         // The frame is flipped to wo's side for the transmitting kinds and for two-sided
         // reflection; a one-sided surface seen from below scatters nothing.
-        let side = if self.lobes.transmits() {
+        let side = if let Lobes::Glass { .. } = self.lobes {
+            // Mitsuba's `dielectric`: wo's side of the shading normal (its cos θ_i) says
+            // whether the path enters or leaves, whichever side of the geometric normal wo
+            // is on.
+            if wo.dot(self.frame.z) >= 0.0 {
+                1.0
+            } else {
+                -1.0
+            }
+        } else if self.lobes.transmits() {
             if wo.dot(self.ng) >= 0.0 { 1.0 } else { -1.0 }
         } else {
             self.reflection_side(wo)
@@ -466,7 +479,7 @@ impl Bsdf {
         u_lobe: f32,
         mode: TransportMode,
     ) -> Option<BsdfSample> {
-        // Entering when wo is on the side the geometric normal points to.
+        // Entering when wo is on the side the shading normal points to.
         let entering = side > 0.0;
         let eta_rel = if entering { eta } else { 1.0 / eta };
         let fr = fresnel_dielectric(lo.z, eta_rel);

@@ -111,12 +111,29 @@ pub struct SurfaceHit {
     pub p: Vec3,
     /// Geometric normal, unit, as the triangle's winding gives it.
     pub ng: Vec3,
-    /// Shading normal, unit, on the same side as `ng`.
+    /// Shading normal, unit, as the vertex normals interpolate it: on either side of `ng`
+    /// (a mesh may be wound against its normals); `ng` without vertex normals.
     pub ns: Vec3,
     pub uv: Vec2,
     pub triangle: u32,
     pub material: u32,
     pub light: Option<u32>,
+}
+
+impl SurfaceHit {
+    /// The geometric normal turned to the side the shading normal faces: the surface's front,
+    /// as Mitsuba 3 takes it. Mitsuba evaluates every BSDF in the shading frame, so where the
+    /// vertex normals point against the winding, the shading normal decides which side of a
+    /// `dielectric` is outside (its `cos θ_i > 0`: entering) and which side a one-sided BSDF
+    /// reflects on; the winding alone would turn a glass ball into a bubble in glass.
+    #[inline]
+    pub fn facing_ng(&self) -> Vec3 {
+        if self.ns.dot(self.ng) < 0.0 {
+            -self.ng
+        } else {
+            self.ng
+        }
+    }
 }
 
 /// Offsets a ray origin off a surface along the geometric normal `n` (pointing to the side

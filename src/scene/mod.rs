@@ -242,8 +242,6 @@ impl Scene {
                 let n = (b0 * n[0] + b1 * n[1] + b2 * n[2]).normalize_or_zero();
                 if n == Vec3::ZERO || !n.is_finite() {
                     ng
-                } else if n.dot(ng) < 0.0 {
-                    -n
                 } else {
                     n
                 }
@@ -274,6 +272,8 @@ impl Scene {
 
     /// [`Scene::bsdf`] compiled for the effects `F`: no texture lookups without textures,
     /// and a Lambertian material's lobes made directly when every surface is Lambertian.
+    /// The BSDF's front is the side the shading normal faces ([`SurfaceHit::facing_ng`]), as
+    /// in Mitsuba 3.
     #[inline]
     pub fn bsdf_with<F: Features>(&self, hit: &SurfaceHit) -> Bsdf {
         let m = &self.materials[hit.material as usize];
@@ -282,7 +282,7 @@ impl Scene {
                 lobes: Lobes::Diffuse { kd: m.kd },
                 two_sided: m.two_sided,
             };
-            return Bsdf::new(lobes, hit.ns, hit.ng);
+            return Bsdf::new(lobes, hit.ns, hit.facing_ng());
         }
         let (kd_texture, ks_texture) = if F::TEXTURES {
             (m.kd_texture, m.ks_texture)
@@ -297,7 +297,7 @@ impl Scene {
             Some(t) => m.ks * self.textures[t as usize].lookup(hit.uv),
             None => m.ks,
         };
-        Bsdf::new(Lobes::new(m, kd, ks), hit.ns, hit.ng)
+        Bsdf::new(Lobes::new(m, kd, ks), hit.ns, hit.facing_ng())
     }
 
     /// The shadow ray from surface point `p` (normal `ng`) to `target` (`target_n` the normal

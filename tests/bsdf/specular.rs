@@ -101,6 +101,60 @@ fn glass_fresnel_snell_and_modes() {
     assert!((fresnel_dielectric(wo.z.abs(), 1.0 / eta) - 1.0).abs() < 1e-6);
 }
 
+/// Where the shading normal is tilted from the geometric one (a smooth mesh near its
+/// silhouette), the smooth dielectric reads the side in the shading frame, as Mitsuba 3's
+/// `dielectric` does (`cos θ_i = wo·n_s`), and keeps the direction that frame gives even where
+/// it lies across the geometric plane from where reflection or refraction would put it. Here
+/// `wo` is above the geometric normal (+z) but below the shading normal, tilted 60° toward +y:
+/// the path arrives from inside. At `wo·n_s = -0.56` that is total internal reflection (weight
+/// 1, about `n_s`, and the reflected direction goes through the geometric plane); at
+/// `wo·n_s = -0.84` it refracts out to the shading normal's side by Snell's law with η = 1/1.5,
+/// radiance scaled by 1.5². The winding's side would have refused both (`wo·n_s < 0`).
+#[test]
+fn glass_reads_its_side_in_the_shading_frame() {
+    let eta = 1.5f32;
+    let ns = Vec3::new(0.0, 60f32.to_radians().sin(), 60f32.to_radians().cos());
+    let b = Bsdf::new(
+        Lobes::Glass {
+            eta,
+            tf_sqrt: Rgb::ONE,
+        },
+        ns,
+        Vec3::Z,
+    );
+    let mode = TransportMode::Radiance;
+    // Total internal reflection.
+    let wo = Vec3::new(0.0, -0.9, 0.436).normalize();
+    assert!(wo.z > 0.0 && wo.dot(ns) < -0.5);
+    assert_eq!(fresnel_dielectric(-wo.dot(ns), 1.0 / eta), 1.0);
+    for u_lobe in [0.0, 0.5, 0.999_999] {
+        let s = b
+            .sample(wo, u_lobe, Vec2::splat(0.5), mode)
+            .expect("glass refused a direction below its shading normal");
+        let mirror = -wo + 2.0 * wo.dot(ns) * ns;
+        assert!((s.wi - mirror).length() < 1e-5, "reflected about n_s");
+        assert!(s.wi.z < 0.0, "the reflection crosses the geometric plane");
+        assert!((s.weight - Rgb::ONE).abs().max_element() < 1e-5);
+    }
+    // Refraction out of the glass.
+    let wo = Vec3::new(0.0, -1.0, 0.05).normalize();
+    let cos_i = -wo.dot(ns);
+    assert!(wo.z > 0.0 && cos_i > 0.8);
+    let fr = fresnel_dielectric(cos_i, 1.0 / eta);
+    assert!(fr < 1.0);
+    let s = b.sample(wo, 0.999_999, Vec2::splat(0.5), mode).unwrap();
+    let cos_t = s.wi.dot(ns);
+    assert!(cos_t > 0.0, "refracted to the shading normal's side");
+    let sin_i = (1.0 - cos_i * cos_i).sqrt();
+    let sin_t = (1.0 - cos_t * cos_t).sqrt();
+    assert!(
+        (sin_i - sin_t / eta).abs() < 1e-4,
+        "Snell's law, leaving the glass"
+    );
+    assert!((s.pdf_w - (1.0 - fr)).abs() < 1e-6);
+    assert!((s.weight - Rgb::splat(eta * eta)).abs().max_element() < 1e-4);
+}
+
 /// The thin sheet reflects `R' = R + T²R/(1 - R²)` with `R` the Fresnel reflectance of one
 /// interface and transmits straight through (`wi = -wo`) the rest: `R' + T' = 1` exactly,
 /// the weights are `ks` and `tf`, no `1/η²` in either mode, on both sides.
