@@ -42,6 +42,7 @@ BUNDLED = {
     "door": dict(resx=48, resy=32, rfilter="box", max_depth=8, batches=32, spp=512),
     "desk": dict(resx=48, resy=48, rfilter="gaussian", max_depth=12, batches=32, spp=256),
     "features": dict(resx=64, resy=48, rfilter="tent", max_depth=6, batches=32, spp=256),
+    "glass": dict(resx=48, resy=48, rfilter="box", max_depth=4, batches=32, spp=512),
 }
 
 # The public scenes (../shared/scenes-ext): parameters of the check.
