@@ -629,22 +629,22 @@ class LuxScene:
         cprops = lux.Properties()
         cprops.SetFromString(props_text(cfg))
         config = lux.RenderConfig(cprops, scene)
-        session = lux.RenderSession(config)
+        lux_render = lux.RenderSession(config)
         t0 = time.time()
-        session.Start()
+        lux_render.Start()
         t_started = time.time()
-        while not session.HasDone():
+        while not lux_render.HasDone():
             time.sleep(0.05)
-            session.UpdateStats()
+            lux_render.UpdateStats()
         t_done = time.time()
-        session.UpdateStats()
-        stats = session.GetStats()
+        lux_render.UpdateStats()
+        stats = lux_render.GetStats()
         passes = stats.Get("stats.renderengine.pass").GetInt()
-        film = session.GetFilm()
+        film = lux_render.GetFilm()
         w, h = self.conv.width, self.conv.height
         buf = np.zeros(w * h * 3, dtype=np.float32)
         film.GetOutputFloat(lux.FilmOutputType.RGB, buf)
-        session.Stop()
+        lux_render.Stop()
         img = buf.reshape(h, w, 3)[::-1].astype(np.float64)  # LuxCore's row 0 is the bottom
         return img, dict(spp=passes, seconds=t_done - t0, start_seconds=t_started - t0, config=cfg)
 
