@@ -177,6 +177,8 @@ impl Strategies {
 pub struct PilotMis<T> {
     pub main: T,
     pub unguided: T,
+    /// The horizon of the second-moment layers the pilot writes.
+    pub horizon: crate::moments::Horizon,
 }
 
 /// The unguided positional density of light `li` at one of its points: choice x area pdf.

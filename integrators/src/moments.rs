@@ -35,6 +35,21 @@
 //! Veach Ajar, whose guided light paths can survive with small probabilities, guided path
 //! tracing would show an excess over its own paths that its renders do not have.
 //!
+//! **What the render will not draw.** A term of strategy `s` from a path made by `t` stands
+//! for the paths near it that `s` would draw: `N q_s / (K p_t)` of them over a render of `N`
+//! passes of the estimate, against the one the pilot's `K` passes drew. Where that count is
+//! below one the render mostly does not draw such a path at all: its typical error holds the
+//! path's missing share of the pixel, squared, and not its second moment `f² / q_s`, which
+//! only the rare render that draws it shows (paths the light tracer finds easily and path
+//! tracing rarely: read by MIS from the light paths, they predicted path tracing's error
+//! on Veach Ajar about a hundred times, and on a room behind window panes up to orders of
+//! magnitude above what its renders measure). So the ratio `p_t / q_s` is taken at most
+//! `N / K` ([`Horizon`]): past it the term is `w_t (w^E_s)² V² N / K`, which adds
+//! `w_t (w^E_s)² (V / K)²` to the render's error (the layer's mean over `K` passes, divided
+//! by `N`): about the path's own share of the pixel as the pilot saw it, squared. The
+//! predicted error is then the typical render's (the median over seeds, which the
+//! comparisons report), not the mean over renders, which the rare paths dominate.
+//!
 //! Approximations, each the same for a method's MIS and own layers where it matters: the
 //! cross terms of one sample's contributions are left out; the densities are those the
 //! weights read (with the guide cache the guided mixture in white light, while path
@@ -70,6 +85,30 @@ pub const MIS: usize = 3;
 /// Estimated by MIS from every path for the unguided form of the estimate.
 pub const UNGUIDED: usize = 6;
 
+/// How many passes of each estimate ([`PT`], [`LT`], [`COMBINED`]) the render is expected
+/// to draw per pass of the pilot that writes the layers, at the same density over the image
+/// (a pilot at a lower resolution draws as many paths per pilot pixel as the render per
+/// pixel, so the ratio is the render's time left over the pilot's passes' time, each pass
+/// timed at its own resolution): the largest `p_t / q_s` a term counts (the module doc,
+/// "What the render will not draw").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Horizon(pub [f64; 3]);
+
+impl Horizon {
+    /// No bound: every term's full second moment (the mean over renders).
+    pub const UNBOUNDED: Horizon = Horizon([f64::INFINITY; 3]);
+
+    /// `render_s` seconds of rendering left, over `pilot_passes` passes of the pilot of
+    /// `pass_s` seconds each for the three estimates (pt, lt, combined) at the pilot's
+    /// resolution; at least one pass (the render draws at least what the pilot drew).
+    pub fn new(render_s: f64, pilot_passes: f64, pass_s: [f64; 3]) -> Horizon {
+        Horizon(pass_s.map(|t| {
+            let h = render_s / (pilot_passes.max(1.0) * t);
+            if h.is_nan() { 1.0 } else { h.max(1.0) }
+        }))
+    }
+}
+
 /// The strategies each estimate weighs against each other.
 const SETS: [&[usize]; 3] = [&[0, 1], &[2], &[0, 1, 2]];
 
@@ -77,11 +116,17 @@ const SETS: [&[usize]; 3] = [&[0, 1], &[2], &[0, 1, 2]];
 /// light paths (light tracing).
 const CAMERA_SIDE: [bool; 3] = [true, true, false];
 
-/// `w_t Σ_{s∈set} (w^E_s)² p_t / q_s` for a path made by `st.own` with densities `st.p`, of
-/// an estimate over `set` with densities `q`, each term of a strategy of the other direction
-/// times `survival`, the path's roulette survival (see the module doc); 0 when no strategy
-/// of `set` can make the path.
-pub fn moment_factor(st: &Strategies, q: &[f64; 3], set: &[usize], survival: f64) -> f64 {
+/// `w_t Σ_{s∈set} (w^E_s)² min(p_t / q_s, horizon)` for a path made by `st.own` with
+/// densities `st.p`, of an estimate over `set` with densities `q`, each term of a strategy
+/// of the other direction times `survival`, the path's roulette survival (see the module
+/// doc); 0 when no strategy of `set` can make the path.
+pub fn moment_factor(
+    st: &Strategies,
+    q: &[f64; 3],
+    set: &[usize],
+    survival: f64,
+    horizon: f64,
+) -> f64 {
     let p_t = st.p[st.own];
     if !(p_t > 0.0) || !p_t.is_finite() {
         return 0.0;
@@ -103,7 +148,7 @@ pub fn moment_factor(st: &Strategies, q: &[f64; 3], set: &[usize], survival: f64
             } else {
                 survival
             };
-            f += w * w * (p_t / q[s]) * rr;
+            f += w * w * (p_t / q[s]).min(horizon) * rr;
         }
     }
     let f = w_t * f;
@@ -114,7 +159,8 @@ pub fn moment_factor(st: &Strategies, q: &[f64; 3], set: &[usize], survival: f64
 /// unweighted value `V` (per channel), `st` the strategies that made it, `own` what the
 /// direction that made it added to its own estimate (a camera path: path tracing's weighted
 /// value; a light path: `value`), `by_camera` which direction that was, `survival` the
-/// path's Russian roulette survival probability.
+/// path's Russian roulette survival probability, `horizon` the render's passes per pilot
+/// pass.
 #[inline]
 pub fn terms(
     value: Rgb,
@@ -122,6 +168,7 @@ pub fn terms(
     own: Rgb,
     by_camera: bool,
     survival: f32,
+    horizon: &Horizon,
 ) -> [Rgb; LAYERS.len()] {
     let survival = survival as f64;
     let v2 = value * value;
@@ -133,8 +180,9 @@ pub fn terms(
         // Squared values of rare paths can pass f32's range: such a term is kept at its
         // largest finite value rather than dropped by the film as invalid.
         let clamp = |f: f64| v2 * (f.min(1e30) as f32);
-        t[MIS + e] = clamp(moment_factor(st, &st.p, set, survival));
-        t[UNGUIDED + e] = clamp(moment_factor(st, &st.unguided, set, survival));
+        let h = horizon.0[e];
+        t[MIS + e] = clamp(moment_factor(st, &st.p, set, survival, h));
+        t[UNGUIDED + e] = clamp(moment_factor(st, &st.unguided, set, survival, h));
     }
     t.map(|x| x.min(Rgb::splat(f32::MAX)))
 }
@@ -231,7 +279,7 @@ mod tests {
                                     unguided: q(x),
                                 };
                                 let v = f(x) / (pdf(t, x) * s);
-                                v * v * moment_factor(&st, &st.unguided, set, s)
+                                v * v * moment_factor(&st, &st.unguided, set, s, f64::INFINITY)
                             })
                             .sum()
                     })
@@ -246,5 +294,29 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The horizon bounds each term's density ratio `p_t / q_s`: a light path a thousand
+    /// times likelier for the light tracer than for either of path tracing's strategies
+    /// counts in path tracing's second moment as if ten times likelier under a horizon of
+    /// ten (a hundredth of its full term), and in the light tracer's own (`q = p`) in full.
+    #[test]
+    fn the_horizon_bounds_each_terms_density_ratio() {
+        let st = Strategies {
+            p: [1e-3, 1e-3, 1.0],
+            own: 2,
+            unguided: [1e-3, 1e-3, 1.0],
+        };
+        let pt = |h| moment_factor(&st, &st.p, SETS[PT], 1.0, h);
+        let lt = |h| moment_factor(&st, &st.p, SETS[LT], 1.0, h);
+        assert!((pt(f64::INFINITY) / pt(10.0) - 100.0).abs() < 1e-9);
+        assert_eq!(lt(f64::INFINITY), lt(10.0));
+        // 30 s left over 10 pilot passes of 0.01 s (pt), 0.02 s (lt), 0.03 s (combined):
+        // 300, 150 and 100 render passes per pilot pass; never under one.
+        let h = Horizon::new(30.0, 10.0, [0.01, 0.02, 0.03]);
+        for (got, want) in h.0.iter().zip([300.0, 150.0, 100.0]) {
+            assert!((got - want).abs() < 1e-9, "{got} against {want}");
+        }
+        assert_eq!(Horizon::new(0.0, 10.0, [0.01; 3]).0, [1.0; 3]);
     }
 }

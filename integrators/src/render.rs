@@ -51,8 +51,9 @@ pub struct RenderOptions {
     /// the same image for a fixed seed, bit for bit (`footprint::scene::features`).
     pub specialise: bool,
     /// Add the integrator's second-moment layers after its layers
-    /// ([`crate::integrator::Integrator::moment_layers`]; `auto`'s pilot asks for them).
-    pub moments: bool,
+    /// ([`crate::integrator::Integrator::moment_layers`]; `auto`'s pilot asks for them), for
+    /// a render of this horizon ([`crate::moments::Horizon`]).
+    pub moments: Option<crate::moments::Horizon>,
 }
 
 impl Default for RenderOptions {
@@ -70,7 +71,7 @@ impl Default for RenderOptions {
             seed: 0,
             passes: PassSelection::ALL,
             specialise: true,
-            moments: false,
+            moments: None,
         }
     }
 }
@@ -103,7 +104,7 @@ impl RenderOptions {
             seed: s.seed,
             passes: PassSelection::ALL,
             specialise: true,
-            moments: false,
+            moments: None,
         }
     }
 }
@@ -261,7 +262,7 @@ pub fn with_built_target(
 
 /// One pass (1 sample per pixel) of `method` with `opts`' settings, its random numbers
 /// seeded from `opts.seed ^ stream` (an independent pass for each `stream`); `moments`
-/// asks for the second-moment layers ([`crate::moments`]). `auto`'s pilot and the
+/// asks for the second-moment layers ([`crate::moments`]) for a render of that horizon. `auto`'s pilot and the
 /// relative importance target render such passes.
 pub fn independent_pass(
     scene: &Scene,
@@ -269,7 +270,7 @@ pub fn independent_pass(
     method: Method,
     g: &Guidance,
     stream: u64,
-    moments: bool,
+    moments: Option<crate::moments::Horizon>,
 ) -> RenderResult {
     let o = RenderOptions {
         method,
@@ -294,7 +295,7 @@ pub fn importance_target(
     let method = Method::from_names("combined", "bsdf").expect("registered");
     let none = Guidance::default();
     let passes: Vec<footprint::film::Image> = (0..crate::passes::target::TARGET_PASSES)
-        .map(|k| independent_pass(scene, opts, method, &none, 0x7a67 << 48 | k as u64, false).image)
+        .map(|k| independent_pass(scene, opts, method, &none, 0x7a67 << 48 | k as u64, None).image)
         .collect();
     let mut t = crate::passes::target::ImportanceTarget::from_passes(&passes)?;
     t.time = start.elapsed();
@@ -376,7 +377,7 @@ fn trace(
     let layers: Vec<&'static str> = integrator
         .layers()
         .iter()
-        .chain(if opts.moments {
+        .chain(if opts.moments.is_some() {
             integrator.moment_layers()
         } else {
             &[]
@@ -402,6 +403,7 @@ fn trace(
         light_sampler: guidance.light_sampler(scene, &opts.method, &opts.guide_params),
         guided_mis: opts.guide_params.guided_mis,
         specialisation: opts.specialisation(scene),
+        moments: opts.moments.unwrap_or(crate::moments::Horizon::UNBOUNDED),
     };
 
     // ---- Passes ----

@@ -4,7 +4,7 @@
 use super::choice::{Choice, Decision, Note, PilotTimes};
 use super::metric::{Metric, Pooled, fold_metrics};
 use super::params::*;
-use super::pilot::{Pilot, pass_seconds, pilot_passes};
+use super::pilot::{Ahead, Pilot, pass_seconds, pilot_passes};
 use super::predict::{Candidate, GuidedPilot, can_miss_light, measure, predict_all};
 use super::rank::rank;
 use super::spec::AutoSpec;
@@ -41,6 +41,8 @@ struct Plan<'a> {
     image_scene: &'a Scene,
     opts: &'a RenderOptions,
     spec: &'a AutoSpec,
+    /// When the pilot started.
+    started: Instant,
     /// The unguided path and light tracers' pass times at the pilot's resolution.
     t_pt: f64,
     t_lt: f64,
@@ -65,6 +67,17 @@ impl Plan<'_> {
 
     fn horizon(&self, spent: f64, t_pt_image: f64) -> f64 {
         horizon(self.opts, spent, t_pt_image)
+    }
+
+    /// The render a guided pilot's second-moment layers predict, when `more` seconds of
+    /// pilot are still to come after now: the unguided pass times in proportion (the
+    /// guided pilot times its own combined pass).
+    fn ahead(&self, more: f64, t_pt_image: f64) -> Ahead {
+        let spent = self.started.elapsed().as_secs_f64() + more;
+        Ahead {
+            render_s: self.horizon(spent, t_pt_image),
+            pass_s: [self.t_pt, self.t_lt, self.t_pt + self.t_lt],
+        }
     }
 }
 
@@ -149,6 +162,16 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     let until = budget.map(|t| start + Duration::from_secs_f64(PILOT_SHARE * t));
     // Its first passes time the combined image as it renders (the fastest of them).
     let mut pilot = Pilot::new(scene.camera.pixel_count());
+    // Its second-moment layers predict the render after about the pilot's share (a combined
+    // pass takes about a pt and an lt pass).
+    let ahead = Ahead {
+        render_s: horizon(
+            opts,
+            PILOT_SHARE * budget.unwrap_or(0.0),
+            t_pt1 * pixel_ratio,
+        ),
+        pass_s: [t_pt1, t_lt1, t_pt1 + t_lt1],
+    };
     let t_c = pilot_passes(
         scene,
         opts,
@@ -157,6 +180,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         until,
         MIN_BATCHES + TIMED_PASSES,
         TIMED_PASSES,
+        ahead,
         &mut pilot,
     );
     let pilot = pilot;
@@ -222,6 +246,7 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         image_scene,
         opts,
         spec,
+        started: start,
         t_pt,
         t_lt,
         only_guided: spec.candidates.iter().all(|m| m.guide.uses_particles()),
@@ -445,7 +470,10 @@ fn pilot_guides(plan: &Plan, t_pt_image: f64, pixel_ratio: f64, notes: &mut Vec<
         };
         let guide_maps_s = g0.elapsed().as_secs_f64();
         out.maps_s += guide_maps_s;
-        let (p, secs) = pilot_guide(plan, gname, &gd, guided_pilot, notes);
+        // The guide's pilot passes, its split pilots and the next guides' maps still to come.
+        let more = budget.map_or(0.0, |t| 3.0 * guided_pilot * t);
+        let ahead = plan.ahead(more, t_pt_image);
+        let (p, secs) = pilot_guide(plan, gname, &gd, guided_pilot, ahead, notes);
         let guide_s = g0.elapsed().as_secs_f64();
         last_guided = Some(guide_s);
         out.passes_s += guide_s - guide_maps_s;
@@ -463,10 +491,27 @@ fn pilot_guides(plan: &Plan, t_pt_image: f64, pixel_ratio: f64, notes: &mut Vec<
     if let (Some(t), true) = (budget, unpiloted > 0 && !out.pilots.is_empty()) {
         let each = guided_pilot * t * unpiloted as f64 / out.pilots.len() as f64;
         let extra_start = Instant::now();
+        let all_extra = each * out.pilots.len() as f64;
         for (g, (_, gd)) in out.pilots.iter_mut().zip(&out.built) {
             let until = Instant::now() + Duration::from_secs_f64(each);
             let combined = find("combined", g.guide);
-            pilot_passes(scene, opts, combined, gd, Some(until), 0, 0, &mut g.pilot);
+            // The guide's own pass times (at the pilot's resolution).
+            let [t_c, t_pt, t_lt] = g.secs.map(|t| t / pixel_ratio);
+            let ahead = Ahead {
+                pass_s: [t_pt, t_lt, t_c],
+                ..plan.ahead(all_extra, t_pt_image)
+            };
+            pilot_passes(
+                scene,
+                opts,
+                combined,
+                gd,
+                Some(until),
+                0,
+                0,
+                ahead,
+                &mut g.pilot,
+            );
         }
         out.passes_s += extra_start.elapsed().as_secs_f64();
     }
@@ -481,6 +526,7 @@ fn pilot_guide(
     gname: &'static str,
     gd: &Guidance,
     guided_pilot: f64,
+    ahead: Ahead,
     notes: &mut Vec<Note>,
 ) -> ((Pilot, [Option<SplitPilot>; 2]), [f64; 3]) {
     let (scene, opts) = (plan.scene, plan.opts);
@@ -491,7 +537,17 @@ fn pilot_guide(
     let until = budget.map(|t| Instant::now() + Duration::from_secs_f64(guided_pilot * t));
     let mut p = Pilot::new(scene.camera.pixel_count());
     let min = TIMED_PASSES + 2;
-    let t_c_g = pilot_passes(scene, opts, both, gd, until, min, TIMED_PASSES, &mut p);
+    let t_c_g = pilot_passes(
+        scene,
+        opts,
+        both,
+        gd,
+        until,
+        min,
+        TIMED_PASSES,
+        ahead,
+        &mut p,
+    );
     // The guided pt and lt split as they render (guided splitting), which the combined
     // image's layers cannot show: each is piloted with passes of its own, their noise and
     // time as rendered ([`SplitPilot`]).

@@ -27,8 +27,10 @@
 //!   combined image also estimates each estimate's second moment by MIS from every path,
 //!   and a guided pilot the unguided estimates' from its guided paths ([`crate::moments`]);
 //!   what exceeds the estimate's own paths' second moment is added to `σ²_m` (the reason
-//!   line says where it is most of it). On door this brings `pt-bsdf`'s prediction near
-//!   its rendered error (docs/measurements/door-desk.md).
+//!   line says where it is most of it), each term only as far as the render will draw its
+//!   paths ([`crate::moments::Horizon`]: paths rarer than one in the render's passes count
+//!   with their share of the pixel, not their second moment). On door this brings
+//!   `pt-bsdf`'s prediction near its rendered error (docs/measurements/door-desk.md).
 //! * **Missing light.** A method that cannot make some paths is biased there: path tracing
 //!   misses caustics of point and spot lights (`L S+ D ... E`: a delta light behind a specular
 //!   surface), light tracing misses what the pinhole sees through a specular surface and the

@@ -113,7 +113,8 @@ impl Pilot {
 /// ran), so that the combined image is timed by pilot passes rather than by passes thrown
 /// away (their layers count as any pass's; the second-moment layers hold the other passes).
 /// A guided pilot renders no second-moment layers where their MIS estimates would read
-/// other densities than its paths were drawn with ([`reads_second_moments`]).
+/// other densities than its paths were drawn with ([`reads_second_moments`]); where it
+/// does, for the render `ahead` describes ([`Ahead::horizon`]).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn pilot_passes(
     scene: &Scene,
@@ -123,6 +124,7 @@ pub(super) fn pilot_passes(
     until: Option<Instant>,
     min_batches: usize,
     timed: usize,
+    ahead: Ahead,
     p: &mut Pilot,
 ) -> f64 {
     let mut seconds = f64::INFINITY;
@@ -130,10 +132,26 @@ pub(super) fn pilot_passes(
     // `min_batches` counts every pass of the pilot: timed passes come first.
     debug_assert!(timed == 0 || first + timed <= min_batches);
     let second_moments = reads_second_moments(method, &opts.guide_params);
+    // The last pass's wall time, for the passes still to come before `until`.
+    let mut last_pass_s = f64::NAN;
     for b in passes_until(first, min_batches, until) {
         let stream = 0xa070_0000_0000_0000 ^ (b as u64 + 1);
         let plain = b < first + timed;
-        let r = independent_pass(scene, opts, method, g, stream, second_moments && !plain);
+        let moments = (second_moments && !plain).then(|| {
+            let left = until.map_or(0.0, |u| {
+                u.saturating_duration_since(Instant::now()).as_secs_f64()
+            });
+            let to_come = if last_pass_s > 0.0 {
+                left / last_pass_s
+            } else {
+                0.0
+            };
+            let passes = (b as f64 + 1.0 + to_come).max(min_batches as f64);
+            ahead.horizon(passes, seconds)
+        });
+        let pass_start = Instant::now();
+        let r = independent_pass(scene, opts, method, g, stream, moments);
+        last_pass_s = pass_start.elapsed().as_secs_f64();
         if plain {
             seconds = seconds.min(r.timings.tracing.as_secs_f64());
         }
@@ -152,6 +170,29 @@ pub(super) fn pilot_passes(
         }
     }
     seconds
+}
+
+/// The render a pilot's second-moment layers predict ([`crate::moments::Horizon`]): the
+/// seconds it will have (at the image's resolution), and the three estimates' pass times
+/// (pt, lt, combined) at the pilot's resolution, or times in their proportion (scaled to
+/// the combined pass's time where the pilot times it).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Ahead {
+    pub(super) render_s: f64,
+    pub(super) pass_s: [f64; 3],
+}
+
+impl Ahead {
+    /// The horizon of a pilot of `passes` passes in all, whose combined pass was timed at
+    /// `combined_s` seconds (infinite when not timed: `pass_s` as given).
+    pub(super) fn horizon(&self, passes: f64, combined_s: f64) -> moments::Horizon {
+        let scale = if combined_s.is_finite() && self.pass_s[2] > 0.0 {
+            combined_s / self.pass_s[2]
+        } else {
+            1.0
+        };
+        moments::Horizon::new(self.render_s, passes, self.pass_s.map(|t| t * scale))
+    }
 }
 
 /// Whether the pilot of `method` has second-moment layers to read. The MIS estimates need

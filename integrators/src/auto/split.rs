@@ -37,7 +37,7 @@ impl SplitPilot {
         let mut image = Moments::new(scene.camera.pixel_count());
         let mut seconds = f64::INFINITY;
         for b in passes_until(0, min_passes, until) {
-            let r = independent_pass(scene, opts, method, g, stream ^ (b as u64 + 1), false);
+            let r = independent_pass(scene, opts, method, g, stream ^ (b as u64 + 1), None);
             image.add(&r.image);
             seconds = seconds.min(r.timings.tracing.as_secs_f64());
         }

@@ -53,6 +53,7 @@ impl Integrator for Combined {
             let share = PilotMis {
                 main: CameraMis::new(position, &densities),
                 unguided: CameraMis::new(position, &unguided),
+                horizon: ctx.moments,
             };
             path_tracing::camera_path(ctx, raster, rng, state, share)
         } else {
@@ -80,6 +81,7 @@ impl Integrator for Combined {
         let share = light_tracing::Shared {
             combined,
             moments: pilot.then_some(moments),
+            horizon: ctx.moments,
         };
         let densities = ctx.densities();
         let scene = ctx.scene;
@@ -91,6 +93,7 @@ impl Integrator for Combined {
             light_tracing::light_path(ctx, rng, state, lt, Some(share), |li, p, n| PilotMis {
                 main: LightMis::new(scene, &densities, li, p, n),
                 unguided: LightMis::new(scene, &unguided, li, p, n),
+                horizon: ctx.moments,
             });
         } else {
             light_tracing::light_path(ctx, rng, state, lt, Some(share), |li, p, n| {

@@ -149,6 +149,8 @@ impl LightShare for PilotMis<LightMis<'_>> {
 pub struct Shared<'f> {
     pub combined: &'f mut SplatList,
     pub moments: Option<&'f mut [SplatList]>,
+    /// The horizon of the second-moment layers (`crate::moments::Horizon`).
+    pub horizon: crate::moments::Horizon,
 }
 
 impl Shared<'_> {
@@ -159,7 +161,7 @@ impl Shared<'_> {
         let (f, w, h) = (&cam.filter, cam.width, cam.height);
         self.combined.splat(f, w, h, raster, v * st.weight());
         if let Some(m) = self.moments.as_deref_mut() {
-            let t = crate::moments::terms(v, st, v, false, survival);
+            let t = crate::moments::terms(v, st, v, false, survival, &self.horizon);
             for (list, t) in m.iter_mut().zip(t) {
                 list.splat_second_moment(f, w, h, raster, t);
             }

@@ -41,6 +41,9 @@ pub struct Context<'a> {
     pub guided_mis: bool,
     /// The compiled path loop the paths run in (`crate::specialised!`).
     pub specialisation: Specialisation,
+    /// The horizon of the second-moment layers, where they are asked for
+    /// (`crate::moments::Horizon`).
+    pub moments: crate::moments::Horizon,
 }
 
 impl<'a> Context<'a> {

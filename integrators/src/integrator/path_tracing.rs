@@ -99,9 +99,10 @@ pub trait CameraShare: Copy {
         Strategies::NONE
     }
     fn scattered(&mut self, _v: &Vertex, _s: &DirectionSample) {}
-    /// The path also feeds the second-moment layers (`crate::moments`).
-    fn moments(&self) -> bool {
-        false
+    /// The path also feeds the second-moment layers (`crate::moments`), for a render of
+    /// this horizon.
+    fn moments(&self) -> Option<&crate::moments::Horizon> {
+        None
     }
 }
 
@@ -150,8 +151,8 @@ impl CameraShare for PilotMis<CameraMis<'_>> {
         CameraShare::scattered(&mut self.main, v, s);
         CameraShare::scattered(&mut self.unguided, v, s);
     }
-    fn moments(&self) -> bool {
-        true
+    fn moments(&self) -> Option<&crate::moments::Horizon> {
+        Some(&self.horizon)
     }
 }
 
@@ -308,8 +309,8 @@ impl<S: CameraShare, F: Features> CameraVisitor<'_, S, F> {
     /// layers when they are asked for.
     #[inline]
     fn moments(&mut self, value: Rgb, st: &Strategies, own: Rgb, survival: f32) {
-        if self.share.moments() {
-            let t = crate::moments::terms(value, st, own, true, survival);
+        if let Some(horizon) = self.share.moments() {
+            let t = crate::moments::terms(value, st, own, true, survival, horizon);
             for (m, t) in self.out.m2.iter_mut().zip(t) {
                 *m += t;
             }
