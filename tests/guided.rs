@@ -9,23 +9,11 @@
 
 mod common;
 
-use common::{mean_stderr, scene_path, sidak, t_critical};
+use common::{PAIRS, mean_stderr, scene_path, sidak, t_critical};
 use footprint::scene::Scene;
 use footprint::scene::load::load_scene;
 use footprint::settings::GuideParams;
 use footprint_integrators::{Method, RenderOptions, render};
-
-const PAIRS: [&str; 9] = [
-    "pt-bsdf",
-    "pt-grid",
-    "pt-footprint",
-    "lt-bsdf",
-    "lt-grid",
-    "lt-footprint",
-    "combined-bsdf",
-    "combined-grid",
-    "combined-footprint",
-];
 
 fn small(name: &str, w: u32, h: u32, particles: usize) -> Scene {
     let mut s = load_scene(&scene_path(name)).unwrap();

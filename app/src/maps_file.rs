@@ -22,6 +22,9 @@
 //! statistics (paths u64, emitted 3 x f32, escaped count u32 + 3 x f32 each, seconds f64),
 //! its particles (count u64; position, direction, normal, weight as 3 x f32 each, depth
 //! u16, specular chain u8) and its emission points (count u64; position, normal 3 x f32).
+//! Positions are the scene's own ([`Scene::origin`]: a scene far from the origin of its file
+//! is centred when loaded), which its content hash fixes; version 1 wrote a far scene's
+//! positions in its file's coordinates.
 
 use anyhow::{Result, bail};
 use footprint::Rgb;
@@ -36,7 +39,7 @@ use std::path::Path;
 use std::time::Duration;
 
 pub const MAGIC: &[u8; 8] = b"FPMAPS\r\n";
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 const HEADER: usize = 8 + 4 + 8 + 32;
 
 /// What the passes depend on, as `name=value` words; a file is used only for a render whose

@@ -67,14 +67,41 @@ pub struct Scene {
     pub guide: GuideParams,
     pub effects: Effects,
     pub stats: LoadStats,
-    /// Scene bounding box.
+    /// Scene bounding box, in the scene's own coordinates (see [`Scene::origin`]).
     pub bounds: (Vec3, Vec3),
+    /// Where the scene's own origin lies in the coordinates of its file: zero, or the centre
+    /// of its geometry's bounds when the scene lies far from the origin ([`rebase_origin`]).
+    /// Positions in a `Scene` (vertices, lights, the camera, particles, caches) are relative
+    /// to it; `position + origin` is where the scene file put them.
+    pub origin: Vec3,
     /// What a lenient import replaced, one line each (empty otherwise).
     pub import_notes: Vec<String>,
     /// Index of the environment light, if any (at most one).
     pub environment_light: Option<u32>,
     /// Parameters the scene was loaded with (`-D name=value ...`), part of a reference's key.
     pub source_params: String,
+}
+
+/// The point a scene whose geometry spans `lo`..`hi` (in its file's coordinates) is moved
+/// to the origin from: the centre of the bounds (rounded to f32), when it lies farther from
+/// the origin than the bounds' diagonal is long; zero otherwise.
+///
+/// Rays, hits and offsets are f32, whose spacing grows with a coordinate's magnitude: at 10⁵
+/// it is 2⁻⁷, and the robust ray offset ([`offset_ray_origin`], 256 steps of it) moves a ray
+/// two units off its surface; particle positions, cache regions and their radii lose as much.
+/// Centred, every coordinate is at most about the scene's size and keeps the precision a
+/// scene near the origin has. A scene whose centre lies within its diagonal of the origin
+/// would gain at most a bit or two and keeps its coordinates (and its images, bit for bit).
+/// The vertices keep the precision their file gave them: subtracting the centre from a
+/// nearby f32 coordinate is exact.
+pub fn rebase_origin(lo: Vec3, hi: Vec3) -> Vec3 {
+    let (lo, hi) = (lo.as_dvec3(), hi.as_dvec3());
+    let centre = 0.5 * (lo + hi);
+    if !centre.is_finite() || centre.abs().max_element() <= (hi - lo).length() {
+        Vec3::ZERO
+    } else {
+        centre.as_vec3()
+    }
 }
 
 impl Scene {
@@ -117,6 +144,28 @@ impl Scene {
         assert_eq!(triangles.len(), shading.len());
         // Derived per-material data (rough plastic tables) is made here, once, for every loader.
         let materials: Vec<Material> = materials.into_iter().map(Material::prepared).collect();
+        let (wlo, whi) = crate::math::bounds(
+            triangles
+                .iter()
+                .flat_map(|t| [t.p0, t.p0 + t.e1, t.p0 + t.e2]),
+        );
+        let origin = rebase_origin(wlo, whi);
+        let (mut triangles, mut camera) = (triangles, camera);
+        if origin != Vec3::ZERO {
+            for t in &mut triangles {
+                t.p0 -= origin;
+            }
+            camera.position -= origin;
+            for l in &mut lights {
+                match l {
+                    Light::Point { position, .. } | Light::Spot { position, .. } => {
+                        *position -= origin
+                    }
+                    Light::Area { geom, .. } => geom.p0 -= origin,
+                    Light::Environment { .. } => {}
+                }
+            }
+        }
         let mut shading = shading;
         // Area lights from emissive materials, one per triangle.
         for (i, (t, s)) in triangles.iter().zip(shading.iter_mut()).enumerate() {
@@ -187,6 +236,7 @@ impl Scene {
             effects,
             stats,
             bounds: (lo, hi),
+            origin,
             import_notes: Vec::new(),
             source_params: String::new(),
             environment_light,

@@ -31,6 +31,19 @@ pub fn skip(test: &str, reason: &str) {
     }
 }
 
+/// Every integrator x guide pair, as `--integrator` and `--guide` name them.
+pub const PAIRS: [&str; 9] = [
+    "pt-bsdf",
+    "pt-grid",
+    "pt-footprint",
+    "lt-bsdf",
+    "lt-grid",
+    "lt-footprint",
+    "combined-bsdf",
+    "combined-grid",
+    "combined-footprint",
+];
+
 /// Folder of the bundled scenes.
 pub fn scenes_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenes")

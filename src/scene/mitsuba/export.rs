@@ -27,6 +27,13 @@ fn v3(v: Vec3) -> String {
     format!("{:?}, {:?}, {:?}", v.x, v.y, v.z)
 }
 
+/// A position of the scene (relative to [`Scene::origin`]) where its file put it, in f64: at
+/// a large origin, f32 would round a camera's look-at target by a visible angle.
+fn world(scene: &Scene, p: glam::DVec3) -> String {
+    let w = p + scene.origin.as_dvec3();
+    format!("{:?}, {:?}, {:?}", w.x, w.y, w.z)
+}
+
 fn rgb(name: &str, c: Rgb) -> String {
     format!("<rgb name=\"{name}\" value=\"{}\"/>", v3(c))
 }
@@ -91,7 +98,7 @@ pub fn export(scene: &Scene, source: &Path, out: &Path) -> Result<ExportNotes> {
         x,
         "  <integrator type=\"path\"><integer name=\"max_depth\" value=\"$max_depth\"/></integrator>"
     );
-    let target = cam.position + cam.frame.z;
+    let target = cam.position.as_dvec3() + cam.frame.z.as_dvec3();
     let _ = writeln!(x, "  <sensor type=\"perspective\">");
     let _ = writeln!(
         x,
@@ -107,8 +114,8 @@ pub fn export(scene: &Scene, source: &Path, out: &Path) -> Result<ExportNotes> {
     let _ = writeln!(
         x,
         "    <transform name=\"to_world\"><lookat origin=\"{}\" target=\"{}\" up=\"{}\"/></transform>",
-        v3(cam.position),
-        v3(target),
+        world(scene, cam.position.as_dvec3()),
+        world(scene, target),
         v3(cam.frame.y)
     );
     let _ = writeln!(
@@ -181,7 +188,7 @@ pub fn export(scene: &Scene, source: &Path, out: &Path) -> Result<ExportNotes> {
                 let _ = writeln!(
                     x,
                     "  <emitter type=\"point\"><point name=\"position\" value=\"{}\"/>{}</emitter>",
-                    v3(*position),
+                    world(scene, position.as_dvec3()),
                     rgb("intensity", *intensity)
                 );
             }
@@ -196,14 +203,14 @@ pub fn export(scene: &Scene, source: &Path, out: &Path) -> Result<ExportNotes> {
                 if *profile == SpotProfile::Smoothstep {
                     notes.push(format!(
                         "spot light at {}: its smoothstep falloff is written as Mitsuba's linear-in-angle falloff over the same cones",
-                        v3(*position)
+                        world(scene, position.as_dvec3())
                     ));
                 }
                 let _ = writeln!(
                     x,
                     "  <emitter type=\"spot\">\n    <transform name=\"to_world\"><lookat origin=\"{}\" target=\"{}\" up=\"{}\"/></transform>\n    {}<float name=\"cutoff_angle\" value=\"{:?}\"/><float name=\"beam_width\" value=\"{:?}\"/>\n  </emitter>",
-                    v3(*position),
-                    v3(*position + frame.z),
+                    world(scene, position.as_dvec3()),
+                    world(scene, position.as_dvec3() + frame.z.as_dvec3()),
                     v3(frame.x),
                     rgb("intensity", *intensity),
                     cos_outer.clamp(-1.0, 1.0).acos().to_degrees(),
@@ -413,7 +420,9 @@ fn write_obj(scene: &Scene, tris: &[usize], smooth: bool) -> String {
             ];
             f[k] = *index.entry(key).or_insert_with(|| {
                 nv += 1;
-                let _ = writeln!(o, "v {:?} {:?} {:?}", ps[k].x, ps[k].y, ps[k].z);
+                // Back where the file put it: the vertex was moved by exactly `-origin`.
+                let w = ps[k] + scene.origin;
+                let _ = writeln!(o, "v {:?} {:?} {:?}", w.x, w.y, w.z);
                 if smooth {
                     let _ = writeln!(o, "vn {:?} {:?} {:?}", n.x, n.y, n.z);
                 }
