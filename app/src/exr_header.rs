@@ -83,6 +83,10 @@ pub fn header(r: &Run) -> Vec<(String, String)> {
                 .join("; "),
         ),
     ];
+    if let Some(paths) = result.photons_grown {
+        // The passes and these paths render the image again without the budget.
+        h.push(("footprint/photons_grown", paths.to_string()));
+    }
     if let Some(c) = r.choice {
         h.push(("footprint/auto", format!("{}: {}", c.label, c.reason())));
     }

@@ -160,6 +160,10 @@ pub struct RenderResult {
     /// Regions of the photon map's guide cache whose camera paths learned their own
     /// probability of sampling the BSDF, and all regions (`learn_p_bsdf`).
     pub learned_p_bsdf: Option<(usize, usize)>,
+    /// The photon paths of the light pass when its map grew with the time budget
+    /// ([`Guidance::grown`]): what, with the passes done, renders the image again without a
+    /// budget (`--photons` this, `--map-grow off`, `--spp` the passes).
+    pub photons_grown: Option<usize>,
     /// What the scene's absent effects let the render skip, with counts ([`crate::skips`]).
     pub skipped: Vec<crate::skips::Skip>,
     /// The method rendered.
@@ -606,6 +610,7 @@ fn trace(
             m
         },
         learned_p_bsdf: learner.as_ref().map(|l| l.learned_regions()),
+        photons_grown: guidance.grown.map(|(_, after)| after),
         skipped,
         method: opts.method,
     }
