@@ -83,6 +83,13 @@ pub fn header(r: &Run) -> Vec<(String, String)> {
                 .join("; "),
         ),
     ];
+    if scene.stats.degenerate_skipped > 0 {
+        // Left out when loaded (zero area, or too thin for a normal): said, not hidden.
+        h.push((
+            "footprint/degenerate_triangles_skipped",
+            scene.stats.degenerate_skipped.to_string(),
+        ));
+    }
     if let Some(paths) = result.photons_grown {
         // The passes and these paths render the image again without the budget.
         h.push(("footprint/photons_grown", paths.to_string()));

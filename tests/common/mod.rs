@@ -44,6 +44,23 @@ pub const PAIRS: [&str; 9] = [
     "combined-footprint",
 ];
 
+/// `scene` on each acceleration structure this machine has: the CWBVH, and Embree where it
+/// loads (else `test` records a visible skip).
+pub fn each_accel(test: &str, scene: &footprint::scene::Scene) -> Vec<footprint::scene::Scene> {
+    use footprint::scene::accel::{Accel, Backend};
+    let mut out = Vec::new();
+    for backend in [Backend::Cwbvh, Backend::Embree] {
+        match Accel::build_with(&scene.triangles, backend) {
+            Ok(a) => out.push(footprint::scene::Scene {
+                bvh: std::sync::Arc::new(a),
+                ..scene.clone()
+            }),
+            Err(e) => skip(test, &format!("the CWBVH only: {e}")),
+        }
+    }
+    out
+}
+
 /// Folder of the bundled scenes.
 pub fn scenes_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenes")
