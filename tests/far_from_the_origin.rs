@@ -1,6 +1,6 @@
 //! Scenes far from the origin, and much smaller or larger than the bundled ones, render the
 //! image of the same scene at its own place and size: the Cornell box translated by 10⁵,
-//! scaled by 10⁻³ and scaled by 10³, with every integrator x guide pair (particle maps, the
+//! scaled by 10⁻³, 10⁻⁵ and 10³, with every integrator x guide pair (particle maps, the
 //! guide cache's regions and the footprints' radii included); the translated box on each
 //! acceleration structure.
 //!
@@ -179,6 +179,13 @@ fn far_from_the_origin_translated_by_1e5_renders_the_same_image() {
 #[test]
 fn far_from_the_origin_scale_1e_minus_3_renders_the_same_image() {
     same_images(&cornell("small", 1e-3, [0.0; 3]), "scaled by 1e-3");
+}
+
+/// A box of 55 µm: the ray offset's fixed steps near the origin shrink with the scene
+/// ([`footprint::scene::Scene::offset_scale`]); at their unit size they were a quarter of it.
+#[test]
+fn far_from_the_origin_scale_1e_minus_5_renders_the_same_image() {
+    same_images(&cornell("tiny", 1e-5, [0.0; 3]), "scaled by 1e-5");
 }
 
 #[test]

@@ -18,7 +18,7 @@ use common::scene_path;
 use footprint::bsdf::TransportMode;
 use footprint::rng::Rng;
 use footprint::scene::Scene;
-use footprint::scene::geometry::{SurfaceHit, spawn_origin};
+use footprint::scene::geometry::SurfaceHit;
 use footprint::scene::load::load_scene;
 use footprint::settings::GuideParams;
 use footprint_integrators::Method;
@@ -49,7 +49,7 @@ fn random_path(scene: &Scene, rng: &mut Rng, len: usize) -> Option<Path> {
         let s = bsdf.sample(-dir, rng.uniform(), rng.uniform2(), TransportMode::Radiance)?;
         hits.push((hit, dir));
         delta.push(s.delta);
-        origin = spawn_origin(hit.p, hit.ng, s.wi);
+        origin = scene.spawn_origin(hit.p, hit.ng, s.wi);
         dir = s.wi;
     }
     Some(Path { hits, delta })

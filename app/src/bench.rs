@@ -8,7 +8,6 @@ use footprint::keyword::Keyword;
 use footprint::rng::{Rng, Sequence};
 use footprint::sampling::sample_uniform_sphere;
 use footprint::scene::Scene;
-use footprint::scene::geometry::spawn_origin;
 use footprint::scene::load::load_scene;
 use footprint_integrators::maps::Guidance;
 use footprint_integrators::passes::{PassSettings, light_pass, view_pass};
@@ -51,7 +50,7 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
                     let d2 = sample_uniform_sphere(rng.uniform2());
                     cast += 1;
                     std::hint::black_box(door.intersect(
-                        spawn_origin(h.p, h.ng, d2),
+                        door.spawn_origin(h.p, h.ng, d2),
                         d2,
                         f32::INFINITY,
                     ));

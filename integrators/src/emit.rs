@@ -22,6 +22,8 @@ pub struct LightStart<'s> {
     /// Probability of choosing the light.
     pub pmf: f32,
     pub em: LightEmission,
+    /// The scene's [`Scene::offset_scale`], for the first ray's origin.
+    pub offset_scale: f32,
 }
 
 /// Chooses a light in proportion to power and samples a point and a direction on it.
@@ -34,6 +36,7 @@ pub fn sample_light<'s>(scene: &'s Scene, rng: &mut Rng) -> Option<LightStart<'s
         light,
         pmf,
         em,
+        offset_scale: scene.offset_scale,
     })
 }
 
@@ -74,7 +77,7 @@ pub fn first_ray<'a, F: Features>(
         return None;
     }
     let origin = match em.n {
-        Some(n) => offset_ray_origin(em.p, n),
+        Some(n) => offset_ray_origin(em.p, n, start.offset_scale),
         None => em.p,
     };
     Some((origin, dir, beta))

@@ -288,7 +288,7 @@ fn walk_from<'a, V: Visitor>(
                 if !p.beta.is_finite() || p.beta.max_element() <= 0.0 {
                     return;
                 }
-                p.origin = spawn_origin(v.hit.p, v.hit.ng, s.wi);
+                p.origin = scene.spawn_origin(v.hit.p, v.hit.ng, s.wi);
                 continue;
             }
             drawn = Some(s.into());
@@ -349,7 +349,18 @@ fn walk_from<'a, V: Visitor>(
                     &mut own
                 };
                 let mut q = p;
-                if scatter(sampler, state, r, visitor, &v, &at, &mut q, share, None) {
+                if scatter(
+                    scene.offset_scale,
+                    sampler,
+                    state,
+                    r,
+                    visitor,
+                    &v,
+                    &at,
+                    &mut q,
+                    share,
+                    None,
+                ) {
                     q.depth = depth + 1;
                     q.index = v.index + 1;
                     walk_from(scene, start, sampler, state, r, visitor, q);
@@ -357,7 +368,18 @@ fn walk_from<'a, V: Visitor>(
             }
             return;
         }
-        if !scatter(sampler, state, rng, visitor, &v, &at, &mut p, 1.0, drawn) {
+        if !scatter(
+            scene.offset_scale,
+            sampler,
+            state,
+            rng,
+            visitor,
+            &v,
+            &at,
+            &mut p,
+            1.0,
+            drawn,
+        ) {
             return;
         }
         p.index += 1;
@@ -384,6 +406,7 @@ fn walk_from<'a, V: Visitor>(
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn scatter<'a, V: Visitor>(
+    offset_scale: f32,
     sampler: &GuidedSampler<'a>,
     state: &mut SamplerState<'a>,
     rng: &mut Rng,
@@ -408,7 +431,7 @@ fn scatter<'a, V: Visitor>(
         pdf_w: s.pdf_w,
         delta: s.delta,
     };
-    p.origin = spawn_origin(v.hit.p, v.hit.ng, s.wi);
+    p.origin = spawn_origin(v.hit.p, v.hit.ng, s.wi, offset_scale);
     p.dir = s.wi;
     true
 }

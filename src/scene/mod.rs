@@ -74,6 +74,9 @@ pub struct Scene {
     /// Positions in a `Scene` (vertices, lights, the camera, particles, caches) are relative
     /// to it; `position + origin` is where the scene file put them.
     pub origin: Vec3,
+    /// The scale of the robust ray offset's fixed steps near the origin
+    /// ([`offset_ray_origin`]): the bounds' diagonal, at most 1.
+    pub offset_scale: f32,
     /// What a lenient import replaced, one line each (empty otherwise).
     pub import_notes: Vec<String>,
     /// Index of the environment light, if any (at most one).
@@ -102,6 +105,14 @@ pub fn rebase_origin(lo: Vec3, hi: Vec3) -> Vec3 {
     } else {
         centre.as_vec3()
     }
+}
+
+/// [`Scene::offset_scale`] of a scene whose geometry spans `lo`..`hi`: its diagonal where
+/// that is under a unit, else 1. Scenes of a unit or more keep Wächter and Binder's constants
+/// (and their images, bit for bit); a smaller scene's offsets near the origin shrink with it.
+pub fn offset_scale(lo: Vec3, hi: Vec3) -> f32 {
+    let d = (hi - lo).length();
+    if d > 0.0 && d < 1.0 { d } else { 1.0 }
 }
 
 impl Scene {
@@ -237,6 +248,7 @@ impl Scene {
             stats,
             bounds: (lo, hi),
             origin,
+            offset_scale: offset_scale(lo, hi),
             import_notes: Vec::new(),
             source_params: String::new(),
             environment_light,
@@ -362,9 +374,9 @@ impl Scene {
         target_n: Option<Vec3>,
     ) -> Option<(Vec3, Vec3, f32)> {
         let d = target - p;
-        let o = spawn_origin(p, ng, d);
+        let o = self.spawn_origin(p, ng, d);
         let end = match target_n {
-            Some(n) => offset_ray_origin(target, if n.dot(-d) >= 0.0 { n } else { -n }),
+            Some(n) => self.offset_origin(target, if n.dot(-d) >= 0.0 { n } else { -n }),
             None => target,
         };
         let v = end - o;
@@ -373,6 +385,20 @@ impl Scene {
             return None;
         }
         Some((o, v / dist, dist * (1.0 - 1e-5)))
+    }
+
+    /// A ray origin off the surface at `p` on the side of normal `n` ([`offset_ray_origin`]
+    /// at this scene's [`Scene::offset_scale`]).
+    #[inline]
+    pub fn offset_origin(&self, p: Vec3, n: Vec3) -> Vec3 {
+        offset_ray_origin(p, n, self.offset_scale)
+    }
+
+    /// The origin of a ray leaving surface point `p` (geometric normal `ng`) in direction
+    /// `dir` ([`spawn_origin`] at this scene's [`Scene::offset_scale`]).
+    #[inline]
+    pub fn spawn_origin(&self, p: Vec3, ng: Vec3, dir: Vec3) -> Vec3 {
+        spawn_origin(p, ng, dir, self.offset_scale)
     }
 
     /// Shadow ray from surface point `p` (normal `ng`) to `target`; `target_n` is the normal

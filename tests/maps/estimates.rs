@@ -11,7 +11,6 @@ use footprint::math::{Frame, PI};
 use footprint::rng::Rng;
 use footprint::sampling::sample_cosine_hemisphere;
 use footprint::scene::Scene;
-use footprint::scene::geometry::offset_ray_origin;
 use footprint::scene::load::load_scene;
 use footprint_integrators::integrator::path_tracing::radiance_along;
 use footprint_integrators::passes::{light_pass, view_pass};
@@ -66,7 +65,7 @@ fn photon_irradiance_agrees_with_path_tracing_on_cornell() {
         // Independent estimate: E = E_direct + E_indirect (red channel).
         let m = 40_000;
         let frame = Frame::from_z(*n);
-        let o = offset_ray_origin(*p, *n);
+        let o = scene.offset_origin(*p, *n);
         let xs: Vec<f64> = (0..m)
             .map(|_| {
                 // Direct: one light sample.
