@@ -140,6 +140,18 @@ fn every_pair_agrees_with_the_reference_on_desk() {
     agreement(&scene, 2, 16, 16, 8, &PAIRS, &GuideParams::default());
 }
 
+/// The slit room (`scenes/slit`): a closed room lit only through a narrow slit from a bright
+/// room behind it, the light reaching the camera's room after bouncing in the lit one; 16
+/// samples per replicate, as its replicates are heavy-tailed as desk's are.
+#[test]
+fn every_pair_agrees_with_the_reference_in_the_slit_room() {
+    let mut scene = load_scene(&common::scenes_dir().join("slit/scene.xml")).unwrap();
+    scene.camera = scene.camera.with_resolution(16, 12).unwrap();
+    scene.maps.photons = 30_000;
+    scene.maps.importons = 30_000;
+    agreement(&scene, 2, 16, 16, 10, &PAIRS, &GuideParams::default());
+}
+
 /// Maps that refine each other (two rounds: the second round's light pass guided by the
 /// first importance map, its view pass by the first photon map) with guided MIS weights:
 /// every guided pair still agrees with unguided path tracing, on cornell and door.

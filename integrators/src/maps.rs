@@ -245,7 +245,8 @@ impl Passes {
 }
 
 /// The fraction of `particles` on surfaces the camera sees directly (inside the image,
-/// unoccluded), from up to 20,000 of them spread evenly over the list.
+/// unoccluded; through thin dielectric sheets as the camera connections see, at most
+/// [`SEEN_THROUGH_SHEETS`]), from up to 20,000 of them spread evenly over the list.
 pub fn seen_fraction(scene: &Scene, particles: &[ParticleInput]) -> f64 {
     if particles.is_empty() {
         return 0.0;
@@ -255,12 +256,20 @@ pub fn seen_fraction(scene: &Scene, particles: &[ParticleInput]) -> f64 {
     let seen = sample
         .par_iter()
         .filter(|p| {
+            let camera = scene.camera.position;
             scene.camera.connect(p.position).is_some()
-                && scene.visible_from_camera(p.position, p.normal)
+                && scene
+                    .transmittance(p.position, p.normal, camera, None, SEEN_THROUGH_SHEETS)
+                    .0
+                    .max_element()
+                    > 0.0
         })
         .count();
     seen as f64 / sample.len() as f64
 }
+
+/// Most thin dielectric sheets between a particle and the camera for [`seen_fraction`].
+pub const SEEN_THROUGH_SHEETS: u32 = 8;
 
 /// With a time budget, a sparse photon map grows: the light pass shoots more paths, by the
 /// largest power of two whose passes and builds take at most this share of the budget.
