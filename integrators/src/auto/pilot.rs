@@ -146,7 +146,10 @@ pub(super) fn pilot_passes(
             } else {
                 0.0
             };
-            let passes = (b as f64 + 1.0 + to_come).max(min_batches as f64);
+            // The layers' passes (the timed ones carry none): those so far, this one and
+            // those still to come, at least the least this call runs.
+            let least = min_batches.saturating_sub(first + timed) + p.m2[0].n;
+            let passes = (p.m2[0].n as f64 + 1.0 + to_come).max(least as f64);
             ahead.horizon(passes, seconds)
         });
         let pass_start = Instant::now();
