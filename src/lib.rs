@@ -15,7 +15,7 @@
 //! * [`settings`]: what a scene file's `[render]`, `[maps]` and `[guide]` tables hold;
 //! * [`schema`]: the settings set by name (scene file keys, flags, sweeps, headers, keys);
 //! * foundations: [`keyword`] (values named by keywords), [`math`], [`sampling`] (warps and discrete distributions), [`rng`],
-//!   [`heap`] (a counting allocator), [`error`], [`atomic_file`] (whole-or-nothing writes).
+//!   [`heap`] (a counting allocator), [`memory`] (the maps' memory budget), [`error`], [`atomic_file`] (whole-or-nothing writes).
 //!
 //! The transport (passes, maps, the path loop, the integrators, `auto`) is the
 //! `footprint-integrators` crate (`integrators/`); the command line is `footprint-app`
@@ -30,6 +30,7 @@ pub mod guide;
 pub mod heap;
 pub mod keyword;
 pub mod math;
+pub mod memory;
 pub mod rng;
 pub mod sampling;
 pub mod scene;

@@ -39,6 +39,8 @@ pub enum Kind {
     Switch,
     /// One of these names.
     Name(&'static [&'static str]),
+    /// A size in bytes, with a unit (`512M`, `4G`; [`crate::memory::parse_size`]).
+    Size,
 }
 
 /// Whether the particle passes depend on a setting (saved maps are refused for a render
@@ -275,6 +277,14 @@ pub const SETTINGS: &[Setting] = &[
         Never,
         "With --time: when the photon map's guide cache is sparse (under 80% of its regions guide, or their particles fill under 60% of region_particles), the light pass shoots 2, 4, 8 or 16 times its paths, as many as fit 15% of the budget (on), or keeps its count (off); not with several map rounds or --guide-cache off",
     ),
+    s(
+        Maps,
+        "max_memory",
+        "max-memory",
+        Size,
+        Never,
+        "Memory the particle maps and guide caches may take (512M, 4G; default: half the machine's memory): past it each pass keeps an even share of its particles, their weights raised to match, and the run says so",
+    ),
 ];
 
 /// The setting whose key or flag (dashes or underscores) is `name`.
@@ -345,6 +355,9 @@ fn parse(setting: &Setting, value: &str) -> Result<toml::Value, String> {
             .find(|n| **n == v)
             .map(|n| toml::Value::String(n.to_string()))
             .ok_or_else(|| format!("expects one of {}, got '{v}'", names.join(", "))),
+        Size => {
+            crate::memory::parse_size(v).map(|b| toml::Value::String(crate::memory::format_size(b)))
+        }
     }
 }
 
@@ -443,6 +456,7 @@ mod tests {
     fn the_schema_names_every_field_of_both_tables() {
         let maps = MapSettings {
             max_dist: Some(1.0),
+            max_memory: Some(1 << 30),
             ..MapSettings::default()
         };
         let (g, m) = tables(&GuideParams::default(), &maps);
@@ -487,6 +501,7 @@ mod tests {
                 }
             }
             Name(names) => names[1],
+            Size => "1.5G",
         };
         for setting in SETTINGS {
             let (mut g, mut m) = (GuideParams::default(), MapSettings::default());
@@ -513,6 +528,8 @@ mod tests {
             ("guide-cache", "maybe"),
             ("radius_rule", "round"),
             ("photons", "0"),
+            ("max_memory", "lots"),
+            ("max-memory", "0"),
         ] {
             let s = find(name).expect(name);
             let e = set(&mut g, &mut m, s, value).expect_err(name);

@@ -154,6 +154,14 @@ pub struct MapSettings {
     /// few particles per region) grows: the light pass shoots 2 to 16 times the paths, as
     /// many as fit 15% of the budget (`Guidance::build_within` in the integrators crate).
     pub grow: bool,
+    /// Bytes the particle maps and guide caches may take (`None`: half the machine's
+    /// memory, [`crate::memory::budget`]); past it each pass keeps a share of its particles
+    /// (`integrators/src/passes/thinning.rs`).
+    #[serde(
+        with = "crate::memory::serde_size",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub max_memory: Option<u64>,
 }
 
 impl Default for MapSettings {
@@ -165,6 +173,7 @@ impl Default for MapSettings {
             soft_glossy_max: 100.0,
             rounds: 1,
             grow: true,
+            max_memory: None,
         }
     }
 }

@@ -167,6 +167,7 @@ fn no_particle_surfaces_skips_the_passes_and_changes_nothing() {
             soft_glossy_max: mirrors.maps.soft_glossy_max,
             specialise: false,
             target: None,
+            max_particles: usize::MAX,
         };
         let g = footprint_integrators::maps::Guidance::build(
             &mirrors,

@@ -68,6 +68,7 @@ fn pass_settings(paths: usize, seed: u64) -> PassSettings {
         soft_glossy_max: 100.0,
         specialise: true,
         target: None,
+        max_particles: usize::MAX,
     }
 }
 

@@ -71,6 +71,7 @@ fn check_scene(name: &str, guided: bool, params: &GuideParams) -> Vec<[f32; 3]> 
         soft_glossy_max: scene.maps.soft_glossy_max,
         specialise: true,
         target: None,
+        max_particles: usize::MAX,
     };
     let g = Guidance::build(&scene, &method, params, &pass, &|| None);
     let camera = g.camera_sampler(&scene, &method, params);

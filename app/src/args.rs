@@ -84,6 +84,7 @@ fn setting_arg(s: &'static Setting) -> Arg {
         Kind::Number => arg.value_name("X").allow_negative_numbers(true),
         Kind::Switch => arg.value_parser(PossibleValuesParser::new(["on", "off"])),
         Kind::Name(names) => arg.value_parser(PossibleValuesParser::new(names.iter().copied())),
+        Kind::Size => arg.value_name("SIZE"),
     }
 }
 
@@ -148,6 +149,7 @@ pub fn settings_markdown() -> String {
                 Kind::Number => "X".to_string(),
                 Kind::Switch => "on|off".to_string(),
                 Kind::Name(names) => names.join("|"),
+                Kind::Size => "SIZE".to_string(),
             };
             let default = schema::get(&GuideParams::default(), &MapSettings::default(), s);
             let default = if default == "auto" {

@@ -81,6 +81,7 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
             soft_glossy_max: door.maps.soft_glossy_max,
             specialise: true,
             target: None,
+            max_particles: usize::MAX,
         };
         let pass = light_pass(&door, &s, &bsdf);
         let t = Instant::now();
@@ -102,6 +103,7 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
         soft_glossy_max: door.maps.soft_glossy_max,
         specialise: true,
         target: None,
+        max_particles: usize::MAX,
     };
     for (kind, pass) in [
         (MapKind::Photons, light_pass(&door, &s, &bsdf)),
@@ -175,6 +177,7 @@ pub fn run(scenes: &Path, seconds: f64, extra: Option<(&Path, &Scene)>) -> Resul
             soft_glossy_max: door.maps.soft_glossy_max,
             specialise: true,
             target: None,
+            max_particles: usize::MAX,
         };
         // (method, cache, raster): footprints cached are measured sampled from their caps
         // (raster 0) and rasterised (the scene's `raster`).

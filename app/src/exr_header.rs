@@ -94,6 +94,11 @@ pub fn header(r: &Run) -> Vec<(String, String)> {
         // The passes and these paths render the image again without the budget.
         h.push(("footprint/photons_grown", paths.to_string()));
     }
+    if !result.maps_thinned.is_empty() {
+        // The maps' budget (`max_memory`, else the machine's) thinned them: the image
+        // depends on it.
+        h.push(("footprint/maps_thinned", result.maps_thinned.join("; ")));
+    }
     if let Some(c) = r.choice {
         h.push(("footprint/auto", format!("{}: {}", c.label, c.reason())));
     }

@@ -290,6 +290,7 @@ impl<'a> Reader<'a> {
                 })
             })
             .collect::<Option<Vec<_>>>()?;
+        let particles_drawn = particles.len();
         Some(PassOutput {
             particles,
             emission_points,
@@ -298,6 +299,7 @@ impl<'a> Reader<'a> {
                 emitted,
                 escaped,
                 time,
+                particles_drawn,
                 ..Default::default()
             },
         })

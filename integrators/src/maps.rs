@@ -94,6 +94,8 @@ pub struct Guidance {
     pub skipped: Vec<Skip>,
     /// The photon paths before and after a sparse photon map grew with the budget.
     pub grown: Option<(usize, usize)>,
+    /// A line per pass thinned to keep the maps within the memory budget ([`thinned`]).
+    pub thinned: Vec<String>,
 }
 
 /// What the passes of one render produced (the particles, the other pass's seeds, the
@@ -418,6 +420,11 @@ impl Guidance {
         let grown = format!("photons {} -> {} paths ({why})", light.stats.paths, s.paths);
         let before = light.stats.time;
         let light = grow_light_pass(scene, &s, &GuidedSampler::bsdf(), light);
+        if let Some(line) = thinned(scene, "grown light pass", &light) {
+            self.thinned.retain(|l| !l.starts_with("light pass"));
+            self.summaries.push(line.clone());
+            self.thinned.push(line);
+        }
         self.timings.light_pass += light.stats.time - before;
         // The first photon map's and cache's lines give way to the grown ones'.
         let name = MapKind::Photons.name();
@@ -459,6 +466,12 @@ impl Guidance {
         g.timings.view_pass = passes.view_time;
         g.summaries.extend(passes.rounds);
         let (light, view) = (passes.light, passes.view);
+        for (name, pass) in [("light pass", &light), ("view pass", &view)] {
+            if let Some(line) = pass.as_ref().and_then(|p| thinned(scene, name, p)) {
+                g.summaries.push(line.clone());
+                g.thinned.push(line);
+            }
+        }
         let paths = method.integrator.paths();
         let (photon_map, importance_map) = (paths.camera, paths.light);
         let cache = params.cache;
@@ -521,6 +534,22 @@ impl Guidance {
         let (map, cache) = (self.importons.as_ref(), self.importon_cache.as_ref());
         sampler(scene, method, params, map, cache)
     }
+}
+
+/// The line that says a pass was thinned to keep the maps within the memory budget
+/// ([`crate::passes::thinning`]); `None` when it kept every particle.
+pub fn thinned(scene: &Scene, name: &str, pass: &PassOutput) -> Option<String> {
+    let level = pass.stats.thinning;
+    (level > 0).then(|| {
+        format!(
+            "{name} thinned to keep the maps within max_memory {}: kept 1/{} of its {} particles ({}), each weighing {}x",
+            footprint::memory::format_size(footprint::memory::budget(scene.maps.max_memory)),
+            1u64 << level,
+            pass.stats.particles_drawn,
+            pass.particles.len(),
+            1u64 << level,
+        )
+    })
 }
 
 /// Builds the map of `kind` from a pass's output and, with `seeds`, its guide cache; their

@@ -164,6 +164,9 @@ pub struct RenderResult {
     /// ([`Guidance::grown`]): what, with the passes done, renders the image again without a
     /// budget (`--photons` this, `--map-grow off`, `--spp` the passes).
     pub photons_grown: Option<usize>,
+    /// A line per particle pass thinned to keep the maps within the memory budget
+    /// ([`crate::passes::thinning`]).
+    pub maps_thinned: Vec<String>,
     /// What the scene's absent effects let the render skip, with counts ([`crate::skips`]).
     pub skipped: Vec<crate::skips::Skip>,
     /// The method rendered.
@@ -228,6 +231,9 @@ pub fn pass_settings(scene: &Scene, opts: &RenderOptions) -> PassSettings {
         soft_glossy_max: scene.maps.soft_glossy_max,
         specialise: opts.specialise,
         target: None,
+        max_particles: crate::passes::thinning::max_particles(footprint::memory::budget(
+            scene.maps.max_memory,
+        )),
     }
 }
 
@@ -611,6 +617,7 @@ fn trace(
         },
         learned_p_bsdf: learner.as_ref().map(|l| l.learned_regions()),
         photons_grown: guidance.grown.map(|(_, after)| after),
+        maps_thinned: guidance.thinned.clone(),
         skipped,
         method: opts.method,
     }

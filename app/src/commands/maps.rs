@@ -94,6 +94,8 @@ fn maps(
         "maximum query distance {:.4} (scene units)",
         scene.map_max_dist()
     );
+    let heap_start = footprint::heap::heap_bytes();
+    footprint::heap::reset_peak();
     let passes = run_passes(scene, &method, params, &pass);
     if let Some((path, hash)) = save {
         let key = maps_file::maps_key(&hash, scene, pass.max_depth, pass.seed);
@@ -112,6 +114,20 @@ fn maps(
     for line in &g.summaries {
         println!("{line}");
     }
+    // What the memory budget is reckoned in (integrators/src/passes/thinning.rs).
+    let peak = footprint::heap::heap_peak().saturating_sub(heap_start);
+    let kept: usize = [&g.photons, &g.importons]
+        .into_iter()
+        .flatten()
+        .map(|b| b.pass.particles.len())
+        .sum();
+    println!(
+        "heap at its peak over the scene: {:.1} MB, {:.0} bytes per particle of both passes (max_memory {} allows {} per particle)",
+        peak as f64 / 1e6,
+        peak as f64 / kept.max(1) as f64,
+        footprint::memory::format_size(footprint::memory::budget(scene.maps.max_memory)),
+        footprint_integrators::passes::thinning::PEAK_BYTES_PER_PARTICLE
+    );
     let Some(out) = out else { return Ok(()) };
     for (built, file) in [(&g.photons, "photons.png"), (&g.importons, "importons.png")] {
         let Some(b) = built else { continue };

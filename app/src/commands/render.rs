@@ -357,6 +357,10 @@ fn render(scene: &Scene, request: &Request, opts: RenderOptions, t: &Target) -> 
     write_png(&png, &result.image, t.exposure)?;
     if terminal {
         print_details(&opts, result);
+    } else {
+        for line in &result.maps_thinned {
+            eprintln!("warning: {line}");
+        }
     }
     print_summary(t, scene, &opts, result, &png);
     Ok(())
@@ -366,7 +370,14 @@ fn render(scene: &Scene, request: &Request, opts: RenderOptions, t: &Target) -> 
 /// scene or other settings, or lacks a pass the method needs.
 fn saved_guidance(path: &Path, hash: &str, scene: &Scene, o: &RenderOptions) -> Result<Guidance> {
     let key = maps_file::maps_key(hash, scene, o.max_depth, o.seed);
-    let passes = maps_file::load(path, &key)?;
+    let mut passes = maps_file::load(path, &key)?;
+    // Saved on a machine with more memory, or with a larger budget: thinned to this one's.
+    let max = footprint_integrators::passes::thinning::max_particles(footprint::memory::budget(
+        scene.maps.max_memory,
+    ));
+    for pass in [&mut passes.light, &mut passes.view].into_iter().flatten() {
+        pass.within(max);
+    }
     let (light, view) = needed_passes(&o.method, &o.guide_params);
     if (light && passes.light.is_none()) || (view && passes.view.is_none()) {
         bail!(

@@ -32,7 +32,7 @@ fn light_paths(
 ) -> PassOutput {
     let start = Instant::now();
     let inv_n = 1.0 / s.paths.max(1) as f32;
-    let all = crate::specialised!(s.specialisation(scene), F => run_chunks(paths.clone(), |i, out, state| {
+    let all = crate::specialised!(s.specialisation(scene), F => run_chunks(paths.clone(), s.max_particles, |i, out, state| {
         let mut rng = Rng::new(s.seed, DOMAIN_LIGHT_PASS, i as u64);
         let Some(start) = sample_light(scene, &mut rng) else {
             return;
@@ -69,6 +69,8 @@ fn light_paths(
             emitted,
             escaped: all.escaped,
             time: start.elapsed(),
+            particles_drawn: all.drawn,
+            thinning: all.thinning,
         },
     }
 }
@@ -85,9 +87,13 @@ pub fn grow_light_pass(
 ) -> PassOutput {
     let done = previous.stats.paths;
     assert!(s.paths >= done, "a pass only grows");
-    let more = light_paths(scene, s, sampler, done..s.paths);
+    let mut more = light_paths(scene, s, sampler, done..s.paths);
     let scale = done as f32 / s.paths as f32;
     let mut out = previous;
+    // Both parts at one thinning level, then within the budget together.
+    let level = out.stats.thinning.max(more.stats.thinning);
+    out.thin_to(level);
+    more.thin_to(level);
     for p in &mut out.particles {
         p.weight *= scale;
     }
@@ -105,6 +111,8 @@ pub fn grow_light_pass(
         *e += *x;
     }
     out.stats.paths = s.paths;
+    out.stats.particles_drawn += more.stats.particles_drawn;
+    out.within(s.max_particles);
     out.stats.guided_events += more.stats.guided_events;
     out.stats.fallbacks += more.stats.fallbacks;
     out.stats.time += more.stats.time;

@@ -23,12 +23,14 @@
 //! left area lights): the seeds of the other map's guide cache.
 //!
 //! Parallel with rayon; paths are traced in fixed chunks with per-path random streams and
-//! concatenated in chunk order, so a map is reproducible from its seed.
+//! concatenated in chunk order, so a map is reproducible from its seed. Past its share of
+//! the memory budget a pass keeps an even sample of its particles ([`thinning`]).
 
 mod light_pass;
 mod pass;
 mod storing;
 pub mod target;
+pub mod thinning;
 mod view_pass;
 
 pub use light_pass::{grow_light_pass, light_pass};

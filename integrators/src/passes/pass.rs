@@ -27,6 +27,9 @@ pub struct PassSettings {
     /// The view pass's starting weights per pixel (relative importance,
     /// [`crate::passes::target`]); `None`: every importon path starts at `1 / N`.
     pub target: Option<std::sync::Arc<crate::passes::target::ImportanceTarget>>,
+    /// The most particles the pass keeps (its share of the memory budget,
+    /// [`crate::passes::thinning`]); past it the pass thins.
+    pub max_particles: usize,
 }
 
 impl PassSettings {
@@ -53,6 +56,11 @@ pub struct PassStats {
     /// Weight leaving the scene (no hit) after bounce `k` (index 0: straight from the source).
     pub escaped: Vec<Rgb>,
     pub time: Duration,
+    /// Particles the paths stored before thinning.
+    pub particles_drawn: usize,
+    /// The thinning level: the pass kept a share `2^-thinning` of its particles
+    /// ([`crate::passes::thinning`]); 0 kept all.
+    pub thinning: u32,
 }
 
 #[derive(Clone)]

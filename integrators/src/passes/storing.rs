@@ -1,5 +1,6 @@
 //! The walk both passes share: a visitor that stores a particle at every hit on a guiding
-//! surface, and paths traced in fixed chunks in parallel, concatenated in chunk order.
+//! surface, and paths traced in fixed chunks in parallel, concatenated in chunk order and
+//! kept within the pass's particle budget.
 
 use crate::walk::{Arrival, Start, Vertex, Visitor, walk};
 use footprint::Rgb;
@@ -16,6 +17,7 @@ use std::marker::PhantomData;
 use std::ops::Range;
 
 use super::pass::PassSettings;
+use super::thinning::thin;
 
 const CHUNK: usize = 2048;
 
@@ -26,6 +28,9 @@ pub(super) struct ChunkOut {
     pub(super) escaped: Vec<Rgb>,
     /// Scattering events at guiding surfaces and BSDF fallbacks among them.
     pub(super) guided: (u64, u64),
+    /// Particles stored before thinning, and the thinning level ([`super::thinning`]).
+    pub(super) drawn: usize,
+    pub(super) thinning: u32,
 }
 
 /// Stores particles along a walk.
@@ -75,40 +80,74 @@ impl<F: Features> Visitor for Storing<'_, F> {
     fn restore(&mut self, _b: ()) {}
 }
 
-/// Traces paths `paths` (indices into the pass's streams) in chunks of [`CHUNK`].
+/// Chunks traced between two checks of a pass's particle budget: per worker thread (at
+/// least [`MIN_BATCH_CHUNKS`]), and no more than hold a quarter of the budget's particles
+/// at [`PARTICLES_PER_PATH`] (what a pass holds past its budget is at most one batch).
+const BATCH_CHUNKS_PER_THREAD: usize = 4;
+const MIN_BATCH_CHUNKS: usize = 16;
+/// Particles a path stores, for the batch size: about 8 on door, fewer on open scenes.
+const PARTICLES_PER_PATH: usize = 8;
+
+/// Traces paths `paths` (indices into the pass's streams) in chunks of [`CHUNK`], in
+/// batches; after each batch the particles are thinned while they are more than
+/// `max_particles` ([`super::thinning`]: the result is the same for any batch size, so for
+/// any thread count). `all.thinning` is the level reached, `all.drawn` the particles
+/// stored before thinning.
 pub(super) fn run_chunks<'a>(
     paths: Range<usize>,
+    max_particles: usize,
     path: impl Fn(usize, &mut ChunkOut, &mut SamplerState<'a>) + Sync,
 ) -> ChunkOut {
     let chunks = paths.len().div_ceil(CHUNK);
-    let outs: Vec<ChunkOut> = (0..chunks)
-        .into_par_iter()
-        .map(|c| {
-            let mut out = ChunkOut::default();
-            let mut state = SamplerState::default();
-            let first = paths.start + c * CHUNK;
-            for i in first..(first + CHUNK).min(paths.end) {
-                path(i, &mut out, &mut state);
+    let batch = (BATCH_CHUNKS_PER_THREAD * rayon::current_num_threads())
+        .max(MIN_BATCH_CHUNKS)
+        .min(max_particles / (4 * CHUNK * PARTICLES_PER_PATH))
+        .max(1);
+    let mut all = ChunkOut::default();
+    for first_chunk in (0..chunks).step_by(batch) {
+        let outs: Vec<ChunkOut> = (first_chunk..(first_chunk + batch).min(chunks))
+            .into_par_iter()
+            .map(|c| {
+                let mut out = ChunkOut::default();
+                let mut state = SamplerState::default();
+                let first = paths.start + c * CHUNK;
+                for i in first..(first + CHUNK).min(paths.end) {
+                    path(i, &mut out, &mut state);
+                }
+                out.guided = (state.prepared_events, state.fallbacks);
+                out
+            })
+            .collect();
+        all.particles
+            .reserve(outs.iter().map(|o| o.particles.len()).sum());
+        for mut o in outs {
+            all.drawn += o.particles.len();
+            thin(&mut o.particles, &mut o.emission_points, 0, all.thinning);
+            all.guided.0 += o.guided.0;
+            all.guided.1 += o.guided.1;
+            all.particles.extend_from_slice(&o.particles);
+            all.emission_points.extend_from_slice(&o.emission_points);
+            if all.escaped.len() < o.escaped.len() {
+                all.escaped.resize(o.escaped.len(), Rgb::ZERO);
             }
-            out.guided = (state.prepared_events, state.fallbacks);
-            out
-        })
-        .collect();
-    let mut all = ChunkOut {
-        particles: Vec::with_capacity(outs.iter().map(|o| o.particles.len()).sum()),
-        ..Default::default()
-    };
-    for o in outs {
-        all.guided.0 += o.guided.0;
-        all.guided.1 += o.guided.1;
-        all.particles.extend_from_slice(&o.particles);
-        all.emission_points.extend_from_slice(&o.emission_points);
-        if all.escaped.len() < o.escaped.len() {
-            all.escaped.resize(o.escaped.len(), Rgb::ZERO);
+            for (e, x) in all.escaped.iter_mut().zip(&o.escaped) {
+                *e += *x;
+            }
         }
-        for (e, x) in all.escaped.iter_mut().zip(&o.escaped) {
-            *e += *x;
+        while all.particles.len() > max_particles && all.thinning < 63 {
+            let from = all.thinning;
+            all.thinning += 1;
+            thin(
+                &mut all.particles,
+                &mut all.emission_points,
+                from,
+                all.thinning,
+            );
         }
+    }
+    if all.thinning > 0 {
+        all.particles.shrink_to_fit();
+        all.emission_points.shrink_to_fit();
     }
     all
 }

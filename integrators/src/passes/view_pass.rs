@@ -22,7 +22,7 @@ pub fn view_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> Pa
     let cam = &scene.camera;
     let inv_n = 1.0 / s.paths.max(1) as f32;
     let size = Vec2::new(cam.width as f32, cam.height as f32);
-    let all = crate::specialised!(s.specialisation(scene), F => run_chunks(0..s.paths, |i, out, state| {
+    let all = crate::specialised!(s.specialisation(scene), F => run_chunks(0..s.paths, s.max_particles, |i, out, state| {
         let mut rng = Rng::new(s.seed, DOMAIN_VIEW_PASS, i as u64);
         let raster = rng.uniform2() * size;
         let w = inv_n * s.target.as_ref().map_or(1.0, |t| t.at_raster(raster, size));
@@ -47,6 +47,8 @@ pub fn view_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> Pa
             emitted: Rgb::ONE,
             escaped: all.escaped,
             time: start.elapsed(),
+            particles_drawn: all.drawn,
+            thinning: all.thinning,
         },
     }
 }
