@@ -8,7 +8,8 @@
 //!   `export`, `bench`): its flags and what it runs;
 //! * [`args`]: flags several commands share, the settings flags from the schema;
 //! * [`exr_header`]: what a rendered EXR records;
-//! * [`bench`]: the speed measurements of `footprint bench`;
+//! * [`bench`]: the speed measurements of `footprint bench`; [`ray_bench`]: its rays per
+//!   second by kind on each ray tracer (`--rays`);
 //! * [`compare`]: equal-time comparisons, error against time, parameter sweeps, the report;
 //! * [`merge`]: the image of one run from its shards' images;
 //! * [`maps_file`]: saved maps (the passes' particles), versioned and checksummed;
@@ -24,4 +25,5 @@ pub mod exr_header;
 pub mod map_picture;
 pub mod maps_file;
 pub mod merge;
+pub mod ray_bench;
 pub mod scene_hash;

@@ -43,7 +43,11 @@ impl TriangleGeom {
         self.intersect_range(origin, dir, 0.0, t_max)
     }
 
-    /// Möller–Trumbore intersection for `t_min < t < t_max`.
+    /// Möller–Trumbore intersection for `t_min < t < t_max`. Every test is computed and
+    /// the results combined without a branch each (a ray's data decide them, so branches
+    /// would mispredict; one branch remains, on the combined result). A parallel ray
+    /// (`det` zero) makes `inv_det` infinite and the barycentrics infinite or NaN, and a
+    /// non-finite `det` makes `t` zero or NaN: both fail the tests, as they must.
     #[inline(always)]
     pub fn intersect_range(
         &self,
@@ -54,26 +58,14 @@ impl TriangleGeom {
     ) -> Option<(f32, f32, f32)> {
         let pvec = dir.cross(self.e2);
         let det = self.e1.dot(pvec);
-        if det == 0.0 || !det.is_finite() {
-            return None;
-        }
         let inv_det = 1.0 / det;
         let tvec = origin - self.p0;
-        let b1 = tvec.dot(pvec) * inv_det;
-        if !(0.0..=1.0).contains(&b1) {
-            return None;
-        }
         let qvec = tvec.cross(self.e1);
+        let b1 = tvec.dot(pvec) * inv_det;
         let b2 = dir.dot(qvec) * inv_det;
-        if b2 < 0.0 || b1 + b2 > 1.0 {
-            return None;
-        }
         let t = self.e2.dot(qvec) * inv_det;
-        if t > t_min && t < t_max {
-            Some((t, b1, b2))
-        } else {
-            None
-        }
+        let hit = (b1 >= 0.0) & (b2 >= 0.0) & (b1 + b2 <= 1.0) & (t > t_min) & (t < t_max);
+        if hit { Some((t, b1, b2)) } else { None }
     }
 
     /// Unnormalised geometric normal (`e1 x e2`, length twice the area).
@@ -183,4 +175,60 @@ pub fn offset_ray_origin(p: Vec3, n: Vec3, scale: f32) -> Vec3 {
 pub fn spawn_origin(p: Vec3, ng: Vec3, dir: Vec3, scale: f32) -> Vec3 {
     let n = if dir.dot(ng) >= 0.0 { ng } else { -ng };
     offset_ray_origin(p, n, scale)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The branch-free test rejects what it must through the arithmetic alone: rays
+    /// parallel to the triangle (in its plane too), non-finite origins and directions,
+    /// hits outside `(t_min, t_max)` and outside the triangle; and finds the hit inside,
+    /// with its barycentrics.
+    #[test]
+    fn the_triangle_test_rejects_degenerate_rays_and_finds_hits() {
+        let tri = TriangleGeom::new(Vec3::ZERO, Vec3::X, Vec3::Y);
+        let down = -Vec3::Z;
+        let (t, b1, b2) = tri
+            .intersect(Vec3::new(0.25, 0.5, 2.0), down, 10.0)
+            .expect("a hit inside");
+        assert_eq!((t, b1, b2), (2.0, 0.25, 0.5));
+        let miss = |o: Vec3, d: Vec3, t_min: f32, t_max: f32| {
+            tri.intersect_range(o, d, t_min, t_max).is_none()
+        };
+        assert!(
+            miss(Vec3::new(0.25, 0.5, 2.0), down, 0.0, 2.0),
+            "t_max is exclusive"
+        );
+        assert!(
+            miss(Vec3::new(0.25, 0.5, 2.0), down, 2.0, 3.0),
+            "t_min is exclusive"
+        );
+        assert!(
+            miss(Vec3::new(0.25, 0.5, 2.0), Vec3::Z, 0.0, 10.0),
+            "behind"
+        );
+        assert!(miss(Vec3::new(0.75, 0.5, 2.0), down, 0.0, 10.0), "outside");
+        assert!(
+            miss(Vec3::new(0.25, 0.5, 1.0), Vec3::X, 0.0, 10.0),
+            "parallel"
+        );
+        assert!(
+            miss(Vec3::new(-1.0, 0.2, 0.0), Vec3::X, 0.0, 10.0),
+            "in its plane"
+        );
+        let nan = Vec3::splat(f32::NAN);
+        assert!(miss(nan, down, 0.0, 10.0) && miss(Vec3::Z, nan, 0.0, 10.0));
+        let inf = Vec3::new(0.25, 0.5, f32::INFINITY);
+        assert!(miss(inf, down, 0.0, f32::INFINITY));
+        // On an edge and at a vertex: inside (closed triangle).
+        assert!(
+            tri.intersect(Vec3::new(0.0, 0.5, 1.0), down, 10.0)
+                .is_some()
+        );
+        assert!(
+            tri.intersect(Vec3::new(1.0, 0.0, 1.0), down, 10.0)
+                .is_some()
+        );
+    }
 }

@@ -366,7 +366,7 @@ impl Scene {
     /// at the target when it lies on a surface, `None` for a point): origin, unit direction and
     /// length, both ends offset off their surfaces; `None` for a degenerate segment.
     #[inline]
-    fn shadow_segment(
+    pub fn shadow_segment(
         &self,
         p: Vec3,
         ng: Vec3,

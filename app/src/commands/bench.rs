@@ -21,9 +21,24 @@ pub struct BenchArgs {
     /// resy=72) whose guided path throughput is measured next to door's
     #[arg(long)]
     scene: Option<PathBuf>,
+    /// Only rays per second by kind (camera, shadow, bounce) on one thread and on all, the
+    /// CWBVH and Embree side by side, on the bundled scenes and the --scene
+    #[arg(long)]
+    rays: bool,
     #[command(flatten)]
     import: ImportArgs,
 }
+
+/// The bundled scenes `--rays` measures (folder, file).
+const RAY_SCENES: [(&str, &str); 7] = [
+    ("door", "door.toml"),
+    ("desk", "desk.toml"),
+    ("cornell", "cornell.toml"),
+    ("features", "scene.xml"),
+    ("glass", "scene.xml"),
+    ("panes", "scene.xml"),
+    ("slit", "scene.xml"),
+];
 
 pub fn run(a: BenchArgs) -> Result<()> {
     set_threads(a.threads)?;
@@ -34,6 +49,23 @@ pub fn run(a: BenchArgs) -> Result<()> {
         .scene
         .map(|p| a.import.load(&p).map(|sc| (p, sc)))
         .transpose()?;
+    if a.rays {
+        let mut scenes = Vec::new();
+        for (name, file) in RAY_SCENES {
+            let path = a.scenes.join(name).join(file);
+            scenes.push((name.to_string(), footprint::scene::load::load_scene(&path)?));
+        }
+        if let Some((path, scene)) = extra {
+            // `veach-ajar/scene.xml` is named by its folder.
+            let named = match path.file_stem() {
+                Some(s) if s != "scene" => Some(s),
+                _ => path.parent().and_then(|p| p.file_name()),
+            };
+            let name = named.map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+            scenes.push((name, scene));
+        }
+        return crate::ray_bench::run(&scenes, a.seconds);
+    }
     crate::bench::run(
         &a.scenes,
         a.seconds,
