@@ -245,8 +245,9 @@ pub struct GuideParams {
     /// Probability of sampling the BSDF where guiding (with `learn_p_bsdf`: where a region
     /// has not learned its own yet).
     pub p_bsdf: f32,
-    /// Camera paths (path tracing, the combined image) learn the probability of sampling the
-    /// BSDF per region of the guide cache from earlier passes (`src/guide/selection.rs`).
+    /// Camera paths (path tracing, the combined image) and light paths (light tracing, the
+    /// combined image) learn the probability of sampling the BSDF per region of their guide
+    /// cache from earlier passes (`src/guide/selection.rs`).
     pub learn_p_bsdf: bool,
     /// Russian roulette reads the guide cache's estimate of what a path would still gather
     /// (its region's particle density times the path's throughput and the surface's

@@ -172,34 +172,37 @@ fn guided_passes_agree_with_the_reference() {
 }
 
 /// The probability of sampling the BSDF learned per region (`learn_p_bsdf`) changes only
-/// between passes, so the guided images stay unbiased: pt and combined with learning agree
-/// with unguided path tracing on cornell. 64 passes per replicate, so that regions gather the
-/// records learning waits for (checked: the run reports learned regions).
+/// between passes, so the guided images stay unbiased: pt, lt and combined with learning
+/// (camera paths over the photon map's cache, light paths over the importance map's) agree
+/// with unguided path tracing on cornell. 64 passes per replicate, so that regions gather
+/// the records learning waits for (checked: the runs report learned regions).
 #[test]
 fn learned_selection_agrees_with_the_reference_on_cornell() {
     let scene = small("cornell", 32, 32, 20_000);
     let params = learning();
-    let probe = render(
-        &scene,
-        &RenderOptions {
-            guide_params: params.clone(),
-            ..opts("pt-footprint", 64, 6, 1)
-        },
-        |_| {},
-    );
-    let learned = learned_regions(&probe);
-    eprintln!("learned regions at 64 spp: {learned}");
-    assert!(
-        learned > 0,
-        "nothing was learned: the test would not test it"
-    );
+    for m in ["pt-footprint", "lt-footprint"] {
+        let probe = render(
+            &scene,
+            &RenderOptions {
+                guide_params: params.clone(),
+                ..opts(m, 64, 6, 1)
+            },
+            |_| {},
+        );
+        let learned = learned_regions(&probe);
+        eprintln!("{m}: learned regions at 64 spp: {learned}");
+        assert!(
+            learned > 0,
+            "{m}: nothing was learned: the test would not test it"
+        );
+    }
     agreement(
         &scene,
         2,
         12,
         64,
         6,
-        &["pt-footprint", "combined-footprint"],
+        &["pt-footprint", "lt-footprint", "combined-footprint"],
         &params,
     );
 }
@@ -353,6 +356,7 @@ fn guided_images_do_not_depend_on_the_thread_count() {
         // 128 passes: guided Russian roulette (the default) ends paths sooner, so regions
         // gather the records learning waits for more slowly (48 passes sufficed without it).
         ("pt-footprint", learning(), 128),
+        ("lt-footprint", learning(), 128),
     ] {
         let o = RenderOptions {
             guide_params: params,

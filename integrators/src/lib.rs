@@ -15,7 +15,8 @@
 //!   integrators and both passes share; [`emit`]: where light paths start;
 //! * [`integrator`]: the `Integrator` trait and its registry: path tracing, light tracing,
 //!   and the combined image; [`mis`]: its weights as running quantities per subpath;
-//!   [`moments`]: the second-moment layers `auto` reads;
+//!   [`moments`]: the second-moment layers `auto` reads; [`learning`]: what a camera or
+//!   light path teaches the learned `p_BSDF`;
 //! * [`render`]: maps, passes over the film, threads, time budgets; [`shard`]: which passes
 //!   a render draws; [`counts`] and [`skips`]: what it counted and what the scene's absent
 //!   effects let it skip;
@@ -27,6 +28,7 @@ pub mod auto;
 pub mod counts;
 pub mod emit;
 pub mod integrator;
+pub mod learning;
 pub mod maps;
 pub mod method;
 pub mod mis;

@@ -157,8 +157,9 @@ pub struct RenderResult {
     pub light_guide: GuideCounts,
     /// Summaries of the maps and caches built.
     pub maps: Vec<String>,
-    /// Regions of the photon map's guide cache whose camera paths learned their own
-    /// probability of sampling the BSDF, and all regions (`learn_p_bsdf`).
+    /// Regions of the guide caches whose paths learned their own probability of sampling
+    /// the BSDF (the photon map's for camera paths, the importance map's for light paths),
+    /// and all their regions (`learn_p_bsdf`).
     pub learned_p_bsdf: Option<(usize, usize)>,
     /// The photon paths of the light pass when its map grew with the time budget
     /// ([`Guidance::grown`]): what, with the passes done, renders the image again without a
@@ -405,12 +406,21 @@ fn trace(
         _ => None,
     };
     camera_sampler.selection = learner.as_ref();
+    // The same for light paths, per region of the importance map's cache.
+    let mut light_sampler = guidance.light_sampler(scene, &opts.method, &opts.guide_params);
+    let light_learner = match &light_sampler.source {
+        GuideSource::Cached(cache) if opts.guide_params.learn_p_bsdf => Some(
+            SelectionLearner::new(cache.regions().len(), opts.guide_params.p_bsdf),
+        ),
+        _ => None,
+    };
+    light_sampler.selection = light_learner.as_ref();
     let ctx = Context {
         scene,
         max_depth: opts.max_depth,
         rr_depth: opts.rr_depth,
         camera_sampler,
-        light_sampler: guidance.light_sampler(scene, &opts.method, &opts.guide_params),
+        light_sampler,
         guided_mis: opts.guide_params.guided_mis,
         specialisation: opts.specialisation(scene),
         moments: opts.moments.unwrap_or(crate::moments::Horizon::UNBOUNDED),
@@ -435,6 +445,7 @@ fn trace(
     );
     let mut last_pass_end = elapsed_since(start);
     let mut records: Vec<SelectionRecord> = Vec::new();
+    let mut light_records: Vec<SelectionRecord> = Vec::new();
     let first_pass_start = last_pass_end;
     loop {
         // The stream index of this pass (a shard draws every `count`-th pass).
@@ -513,7 +524,8 @@ fn trace(
         let light_start = Instant::now();
         if paths.light {
             let chunks = npix.div_ceil(LT_CHUNK);
-            let lists: Vec<(Vec<SplatList>, GuideCounts)> = (0..chunks)
+            type Chunk = (Vec<SplatList>, GuideCounts, Vec<SelectionRecord>);
+            let lists: Vec<Chunk> = (0..chunks)
                 .into_par_iter()
                 .map(|c| {
                     let mut state = SamplerState::default();
@@ -529,14 +541,17 @@ fn trace(
                         );
                         integrator.light_path(&ctx, &mut rng, &mut state, &mut splats);
                     }
-                    (splats, GuideCounts::of(&state))
+                    let records = std::mem::take(&mut state.selection_records);
+                    (splats, GuideCounts::of(&state), records)
                 })
                 .collect();
-            for (splats, counts) in &lists {
+            for (splats, counts, records) in &lists {
                 for (film, s) in films.iter_mut().zip(splats) {
                     film.add_splats(s);
                 }
                 light_guide.add(counts);
+                // Chunks in order: the learned values do not depend on the thread count.
+                light_records.extend_from_slice(records);
             }
         }
         light_time += light_start.elapsed();
@@ -545,6 +560,10 @@ fn trace(
         if let Some(l) = &learner {
             l.absorb(&records);
             records.clear();
+        }
+        if let Some(l) = &light_learner {
+            l.absorb(&light_records);
+            light_records.clear();
         }
         passes += 1;
         let elapsed = elapsed_since(start);
@@ -613,9 +632,21 @@ fn trace(
                     .as_ref()
                     .map(|l| format!("camera paths: {}", l.summary())),
             );
+            m.extend(
+                light_learner
+                    .as_ref()
+                    .map(|l| format!("light paths: {}", l.summary())),
+            );
             m
         },
-        learned_p_bsdf: learner.as_ref().map(|l| l.learned_regions()),
+        learned_p_bsdf: {
+            let regions =
+                [&learner, &light_learner].map(|l| l.as_ref().map(|l| l.learned_regions()));
+            regions
+                .into_iter()
+                .flatten()
+                .reduce(|a, b| (a.0 + b.0, a.1 + b.1))
+        },
         photons_grown: guidance.grown.map(|(_, after)| after),
         maps_thinned: guidance.thinned.clone(),
         skipped,

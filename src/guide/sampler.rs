@@ -214,8 +214,8 @@ pub struct SamplerState<'a> {
     /// state (what the run summary's skip counters are made of).
     pub vertices: u64,
     pub escapes: u64,
-    /// What finished camera paths teach the learned selection probabilities, in the order
-    /// the paths were traced (the path loop's owner hands them to the learner).
+    /// What finished camera or light paths teach the learned selection probabilities, in
+    /// the order the paths were traced (the path loop's owner hands them to the learner).
     pub selection_records: Vec<crate::guide::selection::SelectionRecord>,
 }
 

@@ -26,6 +26,7 @@
 
 use super::{Context, Integrator, Paths};
 use crate::emit::{first_ray, sample_light};
+use crate::learning::Learning;
 use crate::mis::{LightMis, PilotMis, Strategies};
 use crate::walk::{Arrival, Start, Vertex, Visitor, walk};
 use footprint::Rgb;
@@ -241,9 +242,11 @@ pub fn trace<'a, F: Features, W: LightShare>(
         share,
         combined,
         weights,
+        learning: Learning::new(ctx.light_sampler.selection.is_some()),
         features: PhantomData,
     };
     walk(scene, &start, &ctx.light_sampler, state, rng, &mut v);
+    v.learning.finish(&mut state.selection_records);
 }
 
 struct LightVisitor<'s, 'f, W, F> {
@@ -257,6 +260,8 @@ struct LightVisitor<'s, 'f, W, F> {
     /// The path belongs to the combined image (it does not split).
     combined: bool,
     weights: W,
+    /// The guided vertices followed for the learned `p_BSDF` ([`crate::learning`]).
+    learning: Learning,
     features: PhantomData<F>,
 }
 
@@ -290,9 +295,14 @@ impl<W: LightShare, F: Features> Visitor for LightVisitor<'_, '_, W, F> {
         let value = v.beta * f * t * (wi.dot(v.hit.ns).abs() * conn.we_geom);
         let (w, h) = (cam.width, cam.height);
         self.lt.splat(&cam.filter, w, h, conn.raster, value);
-        if let Some(s) = self.share.as_mut() {
-            let st = self.weights.connection(scene, v, wi);
-            s.splat(cam, conn.raster, value, &st, v.survival);
+        match self.share.as_mut() {
+            Some(s) => {
+                let st = self.weights.connection(scene, v, wi);
+                s.splat(cam, conn.raster, value, &st, v.survival);
+                // The combined image is the estimate its light paths serve.
+                self.learning.credit(value * st.weight());
+            }
+            None => self.learning.credit(value),
         }
     }
 
@@ -300,13 +310,15 @@ impl<W: LightShare, F: Features> Visitor for LightVisitor<'_, '_, W, F> {
         if self.share.is_some() {
             self.weights.scattered(v, s);
         }
+        self.learning.scattered(v, s);
     }
 
     // ---- Guided splitting: each branch starts from the same running weights ----
     type Branch = W;
-    /// Not in the combined image (as camera paths, `path_tracing`).
+    /// Not in the combined image (as camera paths, `path_tracing`), nor while learning (a
+    /// learning record follows one path's vertices).
     fn splits(&self) -> bool {
-        !self.combined
+        !self.combined && !self.learning.on
     }
     fn branch(&self) -> W {
         self.weights

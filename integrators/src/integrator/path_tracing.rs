@@ -16,15 +16,13 @@
 //! at hit `n` closes a path of `n` segments; a next-event connection at hit `n`, `n + 1`.
 
 use super::{Context, Integrator, Paths};
+use crate::learning::Learning;
 use crate::mis::{CameraMis, PilotMis, Strategies};
 use crate::walk::{Arrival, Start, Vertex, Visitor, walk};
 use footprint::Rgb;
 use footprint::bsdf::TransportMode;
-use footprint::guide::sampler::{
-    DirectionSample, GuidedDraw, GuidedSampler, SamplerState, ScatterPoint,
-};
-use footprint::guide::selection::SelectionRecord;
-use footprint::math::{luminance, power_heuristic};
+use footprint::guide::sampler::{DirectionSample, GuidedSampler, SamplerState, ScatterPoint};
+use footprint::math::power_heuristic;
 use footprint::rng::Rng;
 use footprint::scene::Scene;
 use footprint::scene::features::{Features, General};
@@ -201,10 +199,7 @@ pub fn trace<'a, F: Features, S: CameraShare>(
         max_depth,
         out: CameraContribution::default(),
         share,
-        learning: Learning {
-            on: sampler.selection.is_some(),
-            ..Learning::default()
-        },
+        learning: Learning::new(sampler.selection.is_some()),
         features: PhantomData,
     };
     let start = Start {
@@ -229,78 +224,6 @@ struct CameraVisitor<'s, S, F> {
     share: S,
     learning: Learning,
     features: PhantomData<F>,
-}
-
-/// Guided vertices of one path followed for the learned selection probabilities
-/// (`footprint::guide::selection`): what the path brings back through each.
-#[derive(Default)]
-struct Learning {
-    on: bool,
-    vertices: [LearningVertex; MAX_LEARNING_VERTICES],
-    len: usize,
-}
-
-/// The first guided vertices of a path that teach (deeper ones carry little).
-const MAX_LEARNING_VERTICES: usize = 8;
-
-#[derive(Clone, Copy, Default)]
-struct LearningVertex {
-    draw: GuidedDraw,
-    pdf_w: f32,
-    /// Luminance of the throughput arriving at the vertex.
-    beta: f32,
-    /// Luminance of the path tracer's contributions found since the vertex scattered.
-    returned: f32,
-}
-
-impl Learning {
-    /// A guided vertex scattered.
-    #[inline]
-    fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
-        let Some(draw) = s.guided.filter(|_| self.on) else {
-            return;
-        };
-        if self.len < MAX_LEARNING_VERTICES {
-            self.vertices[self.len] = LearningVertex {
-                draw,
-                pdf_w: s.pdf_w,
-                beta: luminance(v.beta),
-                returned: 0.0,
-            };
-            self.len += 1;
-        }
-    }
-
-    /// The path tracer's estimate received `c`. Every vertex followed so far scattered
-    /// before it (a vertex's own next-event estimate comes before its scattering), so `c`
-    /// came back through each of them.
-    #[inline]
-    fn credit(&mut self, c: Rgb) {
-        if self.len > 0 {
-            let l = luminance(c);
-            for v in &mut self.vertices[..self.len] {
-                v.returned += l;
-            }
-        }
-    }
-
-    /// The path ended: a record per followed vertex through which light came back, with
-    /// `X` = the return per unit throughput at the vertex.
-    fn finish(&self, out: &mut Vec<SelectionRecord>) {
-        for v in &self.vertices[..self.len] {
-            let d = v.draw;
-            if v.returned > 0.0 && v.beta > 0.0 {
-                let x = v.returned / v.beta;
-                out.push(SelectionRecord {
-                    region: d.region,
-                    x2: x * x,
-                    pdf_bsdf_w: d.pdf_bsdf_w,
-                    pdf_guide_w: d.pdf_guide_w,
-                    pdf_w: v.pdf_w,
-                });
-            }
-        }
-    }
 }
 
 impl<S: CameraShare, F: Features> CameraVisitor<'_, S, F> {
