@@ -18,7 +18,7 @@ use crate::shard::PassSelection;
 use footprint::Rgb;
 use footprint::film::filter::FilterKind;
 use footprint::film::{Film, FilmMode, Image, SampleStats, SplatList};
-use footprint::guide::sampler::{GuideSource, SamplerState};
+use footprint::guide::sampler::{GuideSource, GuidedSampler, SamplerState};
 use footprint::guide::selection::{SelectionLearner, SelectionRecord};
 use footprint::rng::{Rng, Sequence};
 use footprint::scene::Scene;
@@ -396,24 +396,20 @@ fn trace(
         .copied()
         .collect();
     let elapsed_since = |start: Instant| (charged + start.elapsed()).as_secs_f64();
+    // The probability of sampling the BSDF, learned per region of each guide cache from the
+    // paths of earlier passes (footprint::guide::selection): camera paths over the photon
+    // map's, light paths over the importance map's.
+    let learner_of = |sampler: &GuidedSampler| match &sampler.source {
+        GuideSource::Cached(cache) if opts.guide_params.learn_p_bsdf => Some(
+            SelectionLearner::new(cache.regions().len(), opts.guide_params.p_bsdf),
+        ),
+        _ => None,
+    };
     let mut camera_sampler = guidance.camera_sampler(scene, &opts.method, &opts.guide_params);
-    // The probability of sampling the BSDF, learned per region of the photon map's cache
-    // from the camera paths of earlier passes (footprint::guide::selection).
-    let learner = match &camera_sampler.source {
-        GuideSource::Cached(cache) if opts.guide_params.learn_p_bsdf => Some(
-            SelectionLearner::new(cache.regions().len(), opts.guide_params.p_bsdf),
-        ),
-        _ => None,
-    };
+    let learner = learner_of(&camera_sampler);
     camera_sampler.selection = learner.as_ref();
-    // The same for light paths, per region of the importance map's cache.
     let mut light_sampler = guidance.light_sampler(scene, &opts.method, &opts.guide_params);
-    let light_learner = match &light_sampler.source {
-        GuideSource::Cached(cache) if opts.guide_params.learn_p_bsdf => Some(
-            SelectionLearner::new(cache.regions().len(), opts.guide_params.p_bsdf),
-        ),
-        _ => None,
-    };
+    let light_learner = learner_of(&light_sampler);
     light_sampler.selection = light_learner.as_ref();
     let ctx = Context {
         scene,
