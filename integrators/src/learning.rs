@@ -5,6 +5,10 @@
 //! every pixel they reached), so that both guided directions learn their `p_BSDF` per
 //! region of their own guide cache.
 //!
+//! A path that splits (guided splitting, `crate::walk`) is followed through its branches:
+//! the vertices before the split gather every branch's returns, each branch's own vertices
+//! only its own.
+//!
 //! A light path's return through a vertex is the sum of its later splats' luminances; its
 //! square counts the products of splats to different pixels, which the per-pixel error
 //! does not hold. It is the same objective for a path that reaches one pixel, and an upper
@@ -24,6 +28,8 @@ pub struct Learning {
     pub on: bool,
     vertices: [LearningVertex; MAX_LEARNING_VERTICES],
     len: usize,
+    /// Records of the vertices of split branches that ended ([`Learning::restore`]).
+    done: Vec<SelectionRecord>,
 }
 
 /// The first guided vertices of a path that teach (deeper ones carry little).
@@ -78,21 +84,51 @@ impl Learning {
         }
     }
 
-    /// The path ended: a record per followed vertex through which light came back, with
-    /// `X` = the return per unit throughput at the vertex.
-    pub fn finish(&self, out: &mut Vec<SelectionRecord>) {
-        for v in &self.vertices[..self.len] {
-            let d = v.draw;
-            if v.returned > 0.0 && v.beta > 0.0 {
-                let x = v.returned / v.beta;
-                out.push(SelectionRecord {
-                    region: d.region,
-                    x2: x * x,
-                    pdf_bsdf_w: d.pdf_bsdf_w,
-                    pdf_guide_w: d.pdf_guide_w,
-                    pdf_w: v.pdf_w,
-                });
-            }
+    /// Where a split path stands before its branches (the walk's `Visitor::branch`): the
+    /// vertices followed so far, which every branch's returns pass through.
+    #[inline]
+    pub fn branch(&self) -> usize {
+        self.len
+    }
+
+    /// Before a further branch of a split at `mark`: the vertices the branch before
+    /// followed after the split ended with it (their records are kept); the vertices
+    /// before the split go on gathering what the next branch brings back. Each branch's
+    /// contributions carry its share of the throughput, as its vertices' do.
+    pub fn restore(&mut self, mark: usize) {
+        if mark < self.len {
+            let ended = &self.vertices[mark..self.len];
+            self.done
+                .extend(ended.iter().filter_map(LearningVertex::record));
+            self.len = mark;
         }
+    }
+
+    /// The path ended: a record per followed vertex through which light came back, with
+    /// `X` = the return per unit throughput at the vertex (split branches' included).
+    pub fn finish(&mut self, out: &mut Vec<SelectionRecord>) {
+        out.append(&mut self.done);
+        out.extend(
+            self.vertices[..self.len]
+                .iter()
+                .filter_map(LearningVertex::record),
+        );
+    }
+}
+
+impl LearningVertex {
+    /// The vertex's record, when light came back through it.
+    fn record(&self) -> Option<SelectionRecord> {
+        let d = self.draw;
+        (self.returned > 0.0 && self.beta > 0.0).then(|| {
+            let x = self.returned / self.beta;
+            SelectionRecord {
+                region: d.region,
+                x2: x * x,
+                pdf_bsdf_w: d.pdf_bsdf_w,
+                pdf_guide_w: d.pdf_guide_w,
+                pdf_w: self.pdf_w,
+            }
+        })
     }
 }

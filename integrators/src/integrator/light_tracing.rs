@@ -314,16 +314,16 @@ impl<W: LightShare, F: Features> Visitor for LightVisitor<'_, '_, W, F> {
     }
 
     // ---- Guided splitting: each branch starts from the same running weights ----
-    type Branch = W;
-    /// Not in the combined image (as camera paths, `path_tracing`), nor while learning (a
-    /// learning record follows one path's vertices).
+    type Branch = (W, usize);
+    /// Not in the combined image (as camera paths, `path_tracing`).
     fn splits(&self) -> bool {
-        !self.combined && !self.learning.on
+        !self.combined
     }
-    fn branch(&self) -> W {
-        self.weights
+    fn branch(&self) -> (W, usize) {
+        (self.weights, self.learning.branch())
     }
-    fn restore(&mut self, b: W) {
-        self.weights = b;
+    fn restore(&mut self, (weights, mark): (W, usize)) {
+        self.weights = weights;
+        self.learning.restore(mark);
     }
 }

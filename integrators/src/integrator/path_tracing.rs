@@ -371,17 +371,18 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
     }
 
     // ---- Guided splitting: each branch starts from the same running weights ----
-    type Branch = S;
-    /// Not while learning (a learning record follows one path's vertices), nor in the
-    /// combined image (its weights do not count branches; it measures worse with them on
-    /// door and desk, docs/measurements/sweeps.md, "Guided Russian roulette and splitting").
+    type Branch = (S, usize);
+    /// Not in the combined image (its weights do not count branches; it measures worse
+    /// with them on door and desk, docs/measurements/sweeps.md, "Guided Russian roulette
+    /// and splitting").
     fn splits(&self) -> bool {
-        !self.learning.on && !S::ACTIVE
+        !S::ACTIVE
     }
-    fn branch(&self) -> S {
-        self.share
+    fn branch(&self) -> (S, usize) {
+        (self.share, self.learning.branch())
     }
-    fn restore(&mut self, b: S) {
-        self.share = b;
+    fn restore(&mut self, (share, mark): (S, usize)) {
+        self.share = share;
+        self.learning.restore(mark);
     }
 }
