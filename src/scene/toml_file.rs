@@ -425,19 +425,16 @@ fn load_obj(
     };
     let (models, mats) = tobj::load_obj_buf(&mut BufReader::new(text.as_bytes()), &opts, |p| {
         let mtl_path = obj_dir.join(p);
-        match std::fs::File::open(&mtl_path) {
-            Ok(f) => tobj::load_mtl_buf(&mut BufReader::new(f)).map_err(|e| {
+        match crate::scene::obj::read_mtl_text(&mtl_path) {
+            Ok(text) => tobj::load_mtl_buf(&mut BufReader::new(text.as_bytes())).map_err(|e| {
                 *mtl_error.borrow_mut() = Some(Error::Obj {
                     path: mtl_path.clone(),
                     message: e.to_string(),
                 });
                 e
             }),
-            Err(reason) => {
-                *mtl_error.borrow_mut() = Some(Error::Io {
-                    path: mtl_path.clone(),
-                    reason,
-                });
+            Err(e) => {
+                *mtl_error.borrow_mut() = Some(e);
                 Err(tobj::LoadError::OpenFileFailed)
             }
         }
