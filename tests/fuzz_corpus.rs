@@ -154,6 +154,81 @@ fn non_finite_and_huge_values_are_refused() {
     );
 }
 
+/// Coordinates of 10³⁸ are finite but no scene's: refused at the line or field that holds
+/// them, or, made by a transform, for the scene as a whole; an intensity whose power
+/// overflows is refused as such (not as "no lights").
+#[test]
+fn coordinates_of_1e38_are_refused() {
+    let r = "resolution = [8, 8]\n";
+    let emissive = "mtllib mesh.mtl\nusemtl e\n";
+    let mtl = b"newmtl e\nKe 1 1 1\n".as_slice();
+    let scene = |body: &str, obj: &str, mtl: &[u8]| {
+        fuzz::join(&[
+            format!("{CAMERA}{r}{body}[[mesh]]\nfile = \"mesh.obj\"\n").as_bytes(),
+            obj.as_bytes(),
+            mtl,
+        ])
+    };
+    expect_err(
+        "toml_scene",
+        &scene(
+            "",
+            &format!("{emissive}v 0 0 0\nv 1 0 0\nv 1e38 0 1\nf 1 2 3\n"),
+            mtl,
+        ),
+        &["mesh.obj:5", "'1e38' is farther than 1e15"],
+    );
+    expect_err(
+        "toml_scene",
+        &toml_with_mesh(
+            &format!(
+                "{r}[[light]]\ntype = \"point\"\nposition = [0, 3e38, 0]\nintensity = [1, 1, 1]\n"
+            ),
+            QUAD,
+        ),
+        &["scene.toml", "light[0].position is farther than 1e15"],
+    );
+    let quad = format!("{emissive}{QUAD}");
+    let moved = |t: &str| {
+        fuzz::join(&[
+            format!("{CAMERA}{r}[[mesh]]\nfile = \"mesh.obj\"\ntransform = {{ {t} }}\n").as_bytes(),
+            quad.as_bytes(),
+            mtl,
+        ])
+    };
+    expect_err(
+        "toml_scene",
+        &moved("translate = [3e38, 0, 0]"),
+        &[
+            "scene.toml",
+            "mesh[0].transform.translate is farther than 1e15",
+        ],
+    );
+    // Vertices at the limit, scaled past it (a triangle of 10¹⁷ m edges would be degenerate:
+    // its area overflows).
+    let edge = format!("{emissive}v 1e15 0 0\nv 1e15 1e8 0\nv 1e15 0 1e8\nf 1 2 3\n");
+    expect_err(
+        "toml_scene",
+        &fuzz::join(&[
+            format!("{CAMERA}{r}[[mesh]]\nfile = \"mesh.obj\"\ntransform = {{ scale = 10 }}\n")
+                .as_bytes(),
+            edge.as_bytes(),
+            mtl,
+        ]),
+        &["scene.toml", "reaches farther than 1e15 m"],
+    );
+    expect_err(
+        "toml_scene",
+        &toml_with_mesh(
+            &format!(
+                "{r}[[light]]\ntype = \"point\"\nposition = [0, 1, 0]\nintensity = [3e38, 3e38, 3e38]\n"
+            ),
+            QUAD,
+        ),
+        &["scene.toml", "power is not a finite number"],
+    );
+}
+
 /// A maps payload whose particle count says 10^12: refused before anything is allocated.
 #[test]
 fn a_maps_file_declaring_a_trillion_particles_is_refused() {

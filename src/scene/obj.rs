@@ -4,6 +4,7 @@
 //! and the degenerate-triangle rule.
 
 use crate::error::{Error, Result};
+use crate::scene::MAX_COORDINATE;
 use crate::scene::geometry::TriangleGeom;
 use std::path::Path;
 
@@ -25,26 +26,40 @@ pub fn read_obj_text(obj_path: &Path) -> Result<String> {
         path: obj_path.to_path_buf(),
         reason,
     })?;
-    if let Some((line, tok)) = find_bad_vertex(&text) {
+    if let Some((line, message)) = find_bad_vertex(&text) {
         return Err(Error::Syntax {
             path: obj_path.to_path_buf(),
             line,
             column: 1,
-            message: format!("vertex coordinate '{tok}' is not a finite number"),
+            message,
         });
     }
     Ok(text)
 }
 
-/// Scans OBJ text for vertex lines with non-finite coordinates; returns the first line.
+/// Scans OBJ text for vertex lines with non-finite coordinates or coordinates beyond
+/// [`MAX_COORDINATE`]; returns the first line and what is wrong.
 fn find_bad_vertex(text: &str) -> Option<(usize, String)> {
     for (i, line) in text.lines().enumerate() {
         let l = line.trim_start();
         if let Some(rest) = l.strip_prefix("v ").or_else(|| l.strip_prefix("v\t")) {
             for tok in rest.split_whitespace().take(3) {
                 match tok.parse::<f32>() {
-                    Ok(x) if x.is_finite() => {}
-                    _ => return Some((i + 1, tok.to_string())),
+                    Ok(x) if x.abs() <= MAX_COORDINATE => {}
+                    Ok(x) if x.is_finite() => {
+                        return Some((
+                            i + 1,
+                            format!(
+                                "vertex coordinate '{tok}' is farther than {MAX_COORDINATE:e} from the origin"
+                            ),
+                        ));
+                    }
+                    _ => {
+                        return Some((
+                            i + 1,
+                            format!("vertex coordinate '{tok}' is not a finite number"),
+                        ));
+                    }
                 }
             }
         }
