@@ -14,8 +14,8 @@ use std::path::Path;
 /// The largest texture side, in pixels: a bitmap's header that declares more is refused
 /// before its pixels are decoded.
 pub const MAX_TEXTURE_SIDE: u32 = 16384;
-/// The most memory the decoding of one bitmap may take.
-pub const MAX_TEXTURE_BYTES: u64 = 1 << 30;
+/// The most memory the decoding of one bitmap may take (the image crate's default).
+pub const MAX_TEXTURE_BYTES: u64 = 512 << 20;
 
 #[derive(Clone, Debug)]
 pub enum TextureKind {
