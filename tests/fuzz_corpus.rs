@@ -358,3 +358,33 @@ fn a_shard_of_absurd_size_is_refused() {
         &["shard0.exr", "1 to 32768 pixels a side"],
     );
 }
+
+/// Hashes are shown cut to 16 characters: a header's or a key's text that is not ASCII is
+/// cut at a character, not inside one (a panic before).
+#[test]
+fn a_hash_that_is_not_ascii_is_shown_without_a_panic() {
+    let seed = std::fs::read(fuzz_dir().join("seeds/shard_merge/cornell-2-shards")).unwrap();
+    let parts = fuzz::split(&seed, 2);
+    let other = set_exr_text(parts[1], "footprint/scene_hash", "aÈÈÈÈÈÈÈÈÈÈÈÈÈÈÈÈÈÈÈÈ");
+    expect_err(
+        "shard_merge",
+        &fuzz::join(&[parts[0], &other]),
+        &["shard1.exr is a render of another scene"],
+    );
+    let mut p = Vec::new();
+    let key = "scene=aÈÈÈÈÈÈÈÈÈÈÈÈÈÈÈÈÈÈÈÈ";
+    p.extend_from_slice(&(key.len() as u32).to_le_bytes());
+    p.extend_from_slice(key.as_bytes());
+    p.extend_from_slice(&[0, 0]);
+    // Bit 0: a payload; bit 1: loaded with fuzz::MAPS_KEY, another scene's.
+    let mut input = vec![3];
+    input.extend_from_slice(&p);
+    expect_err(
+        "maps_file",
+        &input,
+        &[
+            "maps.fpm was made for another scene",
+            "aÈÈÈÈÈÈÈÈÈÈÈÈÈÈÈ there",
+        ],
+    );
+}

@@ -106,14 +106,15 @@ pub fn obj(data: &[u8]) -> Result<(), String> {
 }
 
 /// The maps file reader ([`crate::maps_file::load`]). The first byte chooses what the rest
-/// is: even, the whole file as it is; odd, the payload, given the header a saved file has
-/// (magic, version, length and checksum), so that the fuzzer reaches the passes behind the
-/// checksum. Either is loaded with the key it holds.
+/// is: bit 0 clear, the whole file as it is; set, the payload, given the header a saved
+/// file has (magic, version, length and checksum), so that the fuzzer reaches the passes
+/// behind the checksum. Bit 1 clear, the file is loaded with the key it holds; set, with
+/// [`MAPS_KEY`] (the mismatch's message).
 pub fn maps_file(data: &[u8]) -> Result<(), String> {
     let d = scratch("maps");
     let path = d.join("maps.fpm");
     let (mode, rest) = data.split_first().unwrap_or((&0, &[]));
-    let (file, key) = if mode & 1 == 0 {
+    let (file, mut key) = if mode & 1 == 0 {
         (
             rest.to_vec(),
             payload_key(rest.get(52..).unwrap_or_default()),
@@ -121,11 +122,18 @@ pub fn maps_file(data: &[u8]) -> Result<(), String> {
     } else {
         (with_header(rest), payload_key(rest))
     };
+    if mode & 2 != 0 {
+        key = MAPS_KEY.to_string();
+    }
     std::fs::write(&path, file).expect("a scratch file");
     crate::maps_file::load(&path, &key)
         .map(drop)
         .map_err(|e| format!("{e:#}"))
 }
+
+/// The key a maps file is loaded with when the input's first byte has bit 1 set.
+pub const MAPS_KEY: &str =
+    "scene=0123456789abcdef0123456789abcdef resolution=4x4 max_depth=8 seed=0 photons=40";
 
 /// A maps file of `payload` with a good header.
 pub fn with_header(payload: &[u8]) -> Vec<u8> {

@@ -186,8 +186,9 @@ fn key_difference(found: &str, expected: &str) -> String {
     format!("was made with other settings: {}", diffs.join(", "))
 }
 
+/// The first 16 characters of a hash (a file's key may be anything: cut at a character).
 fn short(h: &str) -> &str {
-    &h[..h.len().min(16)]
+    h.char_indices().nth(16).map_or(h, |(i, _)| &h[..i])
 }
 
 fn put_bytes(p: &mut Vec<u8>, b: &[u8]) {

@@ -311,9 +311,10 @@ pub fn merge(out: &Path, inputs: &[PathBuf]) -> Result<Merged> {
     })
 }
 
+/// The first 16 characters of a hash (a header's text may be anything: cut at a character).
 fn short(h: Option<&str>) -> &str {
     let h = h.unwrap_or_default();
-    &h[..h.len().min(16)]
+    h.char_indices().nth(16).map_or(h, |(i, _)| &h[..i])
 }
 
 /// The `name=value` words of `found` that differ from `expected`'s.
