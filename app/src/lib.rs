@@ -14,7 +14,8 @@
 //! * [`merge`]: the image of one run from its shards' images;
 //! * [`maps_file`]: saved maps (the passes' particles), versioned and checksummed;
 //! * [`map_picture`]: pictures of the maps (a density estimate per pixel, log scale, legend);
-//! * [`scene_hash`]: the scene's content hash (references, saved maps, shards).
+//! * [`scene_hash`]: the scene's content hash (references, saved maps, shards);
+//! * [`fuzz`]: the readers' fuzz harnesses (`fuzz/`, `tests/fuzz_corpus.rs`).
 
 pub mod args;
 pub mod bench;
@@ -22,6 +23,7 @@ pub mod cli;
 pub mod commands;
 pub mod compare;
 pub mod exr_header;
+pub mod fuzz;
 pub mod map_picture;
 pub mod maps_file;
 pub mod merge;

@@ -122,7 +122,11 @@ pub fn load(path: &Path, expected: &str) -> Result<Passes> {
     if blake3::hash(payload).as_bytes() != &bytes[20..52] {
         bail!("{name} is corrupt (its checksum does not match its content)");
     }
-    let corrupt = || anyhow::anyhow!("{name} is corrupt (its content does not parse)");
+    let corrupt = || {
+        anyhow::anyhow!(
+            "{name} is corrupt (its content does not parse, or holds a number that is not finite)"
+        )
+    };
     let mut r = Reader { b: payload, at: 0 };
     let key = String::from_utf8(r.bytes().ok_or_else(corrupt)?.to_vec()).map_err(|_| corrupt())?;
     if key != expected {
@@ -182,8 +186,9 @@ fn key_difference(found: &str, expected: &str) -> String {
     format!("was made with other settings: {}", diffs.join(", "))
 }
 
+/// The first 16 characters of a hash (a file's key may be anything: cut at a character).
 fn short(h: &str) -> &str {
-    &h[..h.len().min(16)]
+    h.char_indices().nth(16).map_or(h, |(i, _)| &h[..i])
 }
 
 fn put_bytes(p: &mut Vec<u8>, b: &[u8]) {
@@ -250,8 +255,9 @@ impl<'a> Reader<'a> {
     fn f32(&mut self) -> Option<f32> {
         Some(f32::from_le_bytes(self.take(4)?.try_into().ok()?))
     }
+    /// Three finite floats (every vector of a pass is: a NaN or infinity is corruption).
     fn vec3(&mut self) -> Option<Vec3> {
-        Some(Vec3::new(self.f32()?, self.f32()?, self.f32()?))
+        Some(Vec3::new(self.f32()?, self.f32()?, self.f32()?)).filter(|v| v.is_finite())
     }
     fn bytes(&mut self) -> Option<&'a [u8]> {
         let n = self.u32()? as usize;

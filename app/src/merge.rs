@@ -29,6 +29,10 @@ pub const SPP: &str = "footprint/spp";
 pub const SPP_TOTAL: &str = "footprint/spp_total";
 pub const RENDER_TIME: &str = "footprint/render_time_s";
 
+/// The largest image side a render makes (the camera's limit): a shard's header that says
+/// more is not a render's, and its layers are not allocated.
+const MAX_SIDE: u32 = 32768;
+
 /// Keys that describe one run only and are left out of a merged header.
 const PER_RUN: &[&str] = &[
     "footprint/time_split_s",
@@ -98,6 +102,13 @@ impl ShardImage {
             .map_err(|e| anyhow::anyhow!("{name}: {SHARD}: {e}"))?;
         if s.exr.layers.is_empty() {
             bail!("{name} has no image layer");
+        }
+        for (layer, w, h) in &s.exr.layers {
+            if *w == 0 || *h == 0 || *w > MAX_SIDE || *h > MAX_SIDE {
+                bail!(
+                    "{name}: layer '{layer}' is {w}x{h} pixels in its header, not an image of a render (1 to {MAX_SIDE} pixels a side)"
+                );
+            }
         }
         (s.shard, s.spp, s.spp_total) = (shard, spp, spp_total);
         Ok(s)
@@ -169,9 +180,11 @@ pub fn merge(out: &Path, inputs: &[PathBuf]) -> Result<Merged> {
             );
         }
     }
-    let mut by_index: Vec<Option<&ShardImage>> = vec![None; n as usize];
+    // The shard count comes from a header: the shards are kept by index, not in a list of
+    // `n` places, so that no count allocates more than the inputs.
+    let mut by_index: std::collections::BTreeMap<u32, &ShardImage> = Default::default();
     for s in &shards {
-        if let Some(o) = by_index[s.shard.index as usize] {
+        if let Some(o) = by_index.get(&s.shard.index) {
             bail!(
                 "{} and {} are both shard {} (a shard given twice)",
                 o.path.display(),
@@ -189,24 +202,31 @@ pub fn merge(out: &Path, inputs: &[PathBuf]) -> Result<Merged> {
                 s.spp_total
             );
         }
-        by_index[s.shard.index as usize] = Some(s);
+        by_index.insert(s.shard.index, s);
     }
-    let missing: Vec<String> = (0..n)
-        .filter(|i| by_index[*i as usize].is_none())
-        .map(|i| format!("{i}/{n}"))
-        .collect();
-    if !missing.is_empty() {
+    let missing_count = n as usize - by_index.len();
+    if missing_count > 0 {
+        // The first few by name (a count of thousands is named by its number).
+        const NAMED: usize = 8;
+        let mut missing: Vec<String> = (0..n)
+            .filter(|i| !by_index.contains_key(i))
+            .take(NAMED)
+            .map(|i| format!("{i}/{n}"))
+            .collect();
+        if missing_count > NAMED {
+            missing.push(format!("and {} more", missing_count - NAMED));
+        }
         bail!(
             "missing shard{} {} of {} spp (render {} with --shard and merge again)",
-            if missing.len() > 1 { "s" } else { "" },
+            if missing_count > 1 { "s" } else { "" },
             missing.join(", "),
             first.spp_total,
-            if missing.len() > 1 { "them" } else { "it" }
+            if missing_count > 1 { "them" } else { "it" }
         );
     }
     // Weighted by passes, in shard order, in f64; one shard's pixels in memory at a time.
     let total: u32 = shards.iter().map(|s| s.spp).sum();
-    let ordered: Vec<&ShardImage> = by_index.into_iter().flatten().collect();
+    let ordered: Vec<&ShardImage> = by_index.into_values().collect();
     let base = ordered[0];
     let mut sums: Vec<Vec<[f64; 3]>> = base
         .exr
@@ -291,9 +311,10 @@ pub fn merge(out: &Path, inputs: &[PathBuf]) -> Result<Merged> {
     })
 }
 
+/// The first 16 characters of a hash (a header's text may be anything: cut at a character).
 fn short(h: Option<&str>) -> &str {
     let h = h.unwrap_or_default();
-    &h[..h.len().min(16)]
+    h.char_indices().nth(16).map_or(h, |(i, _)| &h[..i])
 }
 
 /// The `name=value` words of `found` that differ from `expected`'s.

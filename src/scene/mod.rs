@@ -39,6 +39,11 @@ use std::sync::Arc;
 /// number keeps 16 of its 24 bits.
 pub const LIGHT_CHOICE_OWN_NUMBER: f32 = 1.0 / 256.0;
 
+/// How far from its file's origin anything of a scene may lie, in metres on every axis: far
+/// beyond any scene (f32 steps there are 10⁸ m), short of where products of coordinates
+/// overflow. The readers name the field or line past it; [`Scene::new`] checks the whole.
+pub const MAX_COORDINATE: f32 = 1e15;
+
 /// Counts reported after loading.
 #[derive(Clone, Debug, Default)]
 pub struct LoadStats {
@@ -160,6 +165,22 @@ impl Scene {
                 .iter()
                 .flat_map(|t| [t.p0, t.p0 + t.e1, t.p0 + t.e2]),
         );
+        let far = |p: Vec3| !(p.abs().max_element() <= MAX_COORDINATE);
+        if far(wlo) || far(whi) || far(camera.position) {
+            return Err(format!(
+                "the scene reaches farther than {MAX_COORDINATE:e} m from the origin (geometry from {wlo} to {whi}, camera at {})",
+                camera.position
+            ));
+        }
+        for l in &lights {
+            if let Light::Point { position, .. } | Light::Spot { position, .. } = l {
+                if far(*position) {
+                    return Err(format!(
+                        "a light at {position} is farther than {MAX_COORDINATE:e} m from the origin"
+                    ));
+                }
+            }
+        }
         let origin = rebase_origin(wlo, whi);
         let (mut triangles, mut camera) = (triangles, camera);
         if origin != Vec3::ZERO {
@@ -219,6 +240,11 @@ impl Scene {
             }
         }
         let powers: Vec<f32> = lights.iter().map(|l| l.power()).collect();
+        if powers.iter().any(|p| !p.is_finite()) {
+            return Err(
+                "a light's power is not a finite number: an intensity or Ke too large (times its area) for 32-bit floats".into(),
+            );
+        }
         let light_distribution = Distribution1D::new(&powers)
             .ok_or("the scene has no lights (no emissive material with Ke > 0 and no [[light]] with intensity > 0)")?;
         let envs: Vec<u32> = (0..lights.len() as u32)

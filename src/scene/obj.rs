@@ -1,8 +1,10 @@
-//! OBJ text helpers shared by the TOML loader and the Mitsuba importer: the check that every
-//! vertex coordinate is a finite number (tobj would read NaN), and the degenerate-triangle
-//! rule.
+//! OBJ and MTL text helpers shared by the TOML loader and the Mitsuba importer: the check
+//! that every vertex coordinate is a finite number (tobj would read NaN), the check of the
+//! MTL's numbers (tobj would read NaN, and panics on a colour of fewer than three numbers),
+//! and the degenerate-triangle rule.
 
 use crate::error::{Error, Result};
+use crate::scene::MAX_COORDINATE;
 use crate::scene::geometry::TriangleGeom;
 use std::path::Path;
 
@@ -24,27 +26,87 @@ pub fn read_obj_text(obj_path: &Path) -> Result<String> {
         path: obj_path.to_path_buf(),
         reason,
     })?;
-    if let Some((line, tok)) = find_bad_vertex(&text) {
+    if let Some((line, message)) = find_bad_vertex(&text) {
         return Err(Error::Syntax {
             path: obj_path.to_path_buf(),
             line,
             column: 1,
-            message: format!("vertex coordinate '{tok}' is not a finite number"),
+            message,
         });
     }
     Ok(text)
 }
 
-/// Scans OBJ text for vertex lines with non-finite coordinates; returns the first line.
+/// Scans OBJ text for vertex lines with non-finite coordinates or coordinates beyond
+/// [`MAX_COORDINATE`]; returns the first line and what is wrong.
 fn find_bad_vertex(text: &str) -> Option<(usize, String)> {
     for (i, line) in text.lines().enumerate() {
         let l = line.trim_start();
         if let Some(rest) = l.strip_prefix("v ").or_else(|| l.strip_prefix("v\t")) {
             for tok in rest.split_whitespace().take(3) {
                 match tok.parse::<f32>() {
-                    Ok(x) if x.is_finite() => {}
-                    _ => return Some((i + 1, tok.to_string())),
+                    Ok(x) if x.abs() <= MAX_COORDINATE => {}
+                    Ok(x) if x.is_finite() => {
+                        return Some((
+                            i + 1,
+                            format!(
+                                "vertex coordinate '{tok}' is farther than {MAX_COORDINATE:e} from the origin"
+                            ),
+                        ));
+                    }
+                    _ => {
+                        return Some((
+                            i + 1,
+                            format!("vertex coordinate '{tok}' is not a finite number"),
+                        ));
+                    }
                 }
+            }
+        }
+    }
+    None
+}
+
+/// An MTL file's text, checked: every colour (`Ka`, `Kd`, `Ks`, `Ke`, `Tf`) is three finite
+/// numbers and every scalar (`Ns`, `Ni`, `d`) a finite number; the first line that is not
+/// is named.
+pub fn read_mtl_text(mtl_path: &Path) -> Result<String> {
+    let text = std::fs::read_to_string(mtl_path).map_err(|reason| Error::Io {
+        path: mtl_path.to_path_buf(),
+        reason,
+    })?;
+    if let Some((line, message)) = find_bad_mtl_number(&text) {
+        return Err(Error::Syntax {
+            path: mtl_path.to_path_buf(),
+            line,
+            column: 1,
+            message,
+        });
+    }
+    Ok(text)
+}
+
+/// The first MTL line whose colour or scalar is not finite numbers, and what is wrong.
+fn find_bad_mtl_number(text: &str) -> Option<(usize, String)> {
+    for (i, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        let Some(key) = words.next() else { continue };
+        let n = match key {
+            "Ka" | "Kd" | "Ks" | "Ke" | "Tf" => 3,
+            "Ns" | "Ni" | "d" => 1,
+            _ => continue,
+        };
+        let values: Vec<&str> = words.take(n).collect();
+        if values.len() < n {
+            return Some((
+                i + 1,
+                format!("{key} needs {n} number{}", if n > 1 { "s" } else { "" }),
+            ));
+        }
+        for tok in values {
+            match tok.parse::<f32>() {
+                Ok(x) if x.is_finite() => {}
+                _ => return Some((i + 1, format!("{key}: '{tok}' is not a finite number"))),
             }
         }
     }

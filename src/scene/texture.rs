@@ -11,6 +11,12 @@ use crate::error::{Error, Result};
 use glam::{Affine2, Vec2};
 use std::path::Path;
 
+/// The largest texture side, in pixels: a bitmap's header that declares more is refused
+/// before its pixels are decoded.
+pub const MAX_TEXTURE_SIDE: u32 = 16384;
+/// The most memory the decoding of one bitmap may take (the image crate's default).
+pub const MAX_TEXTURE_BYTES: u64 = 512 << 20;
+
 #[derive(Clone, Debug)]
 pub enum TextureKind {
     /// An 8-bit image, row-major, top row first, sRGB-encoded as in its file. Lookups decode
@@ -74,10 +80,23 @@ fn wrap_pair(i: i32, n: i32) -> (usize, usize) {
 impl Texture {
     /// Loads an 8-bit image (PNG or JPEG) as sRGB-encoded colour.
     pub fn load(path: &Path) -> Result<Self> {
-        let img = image::open(path).map_err(|e| Error::Texture {
+        let fail = |e: image::ImageError| Error::Texture {
             path: path.to_path_buf(),
-            message: e.to_string(),
-        })?;
+            message: match e {
+                image::ImageError::Limits(_) => format!(
+                    "the image is larger than a texture may be ({MAX_TEXTURE_SIDE} pixels a side, {} MB decoded)",
+                    MAX_TEXTURE_BYTES >> 20
+                ),
+                e => e.to_string(),
+            },
+        };
+        let mut reader = image::ImageReader::open(path).map_err(|e| fail(e.into()))?;
+        let mut limits = image::Limits::default();
+        limits.max_image_width = Some(MAX_TEXTURE_SIDE);
+        limits.max_image_height = Some(MAX_TEXTURE_SIDE);
+        limits.max_alloc = Some(MAX_TEXTURE_BYTES);
+        reader.limits(limits);
+        let img = reader.decode().map_err(fail)?;
         let rgb = img.to_rgb8();
         let (width, height) = rgb.dimensions();
         if width == 0 || height == 0 {

@@ -13,7 +13,7 @@ use crate::scene::camera::Camera;
 use crate::scene::geometry::{TriangleGeom, TriangleShading};
 use crate::scene::light::Light;
 use crate::scene::texture::Texture;
-use crate::scene::{LoadStats, Scene};
+use crate::scene::{LoadStats, MAX_COORDINATE, Scene};
 use crate::settings::{GuideParams, MapSettings, Named, RenderSettings};
 use glam::{Mat3, Mat4, Vec2, Vec3};
 use serde::Deserialize;
@@ -140,6 +140,18 @@ fn finite3(path: &Path, field: &str, v: [f32; 3]) -> Result<Vec3> {
     }
 }
 
+/// A point: finite, and within [`MAX_COORDINATE`] of the origin on every axis.
+fn position3(path: &Path, field: &str, v: [f32; 3]) -> Result<Vec3> {
+    let v = finite3(path, field, v)?;
+    if v.abs().max_element() > MAX_COORDINATE {
+        return Err(Error::invalid(
+            path,
+            format!("{field} is farther than {MAX_COORDINATE:e} from the origin, got {v:?}"),
+        ));
+    }
+    Ok(v)
+}
+
 fn non_negative3(path: &Path, field: &str, v: [f32; 3]) -> Result<Vec3> {
     let v = finite3(path, field, v)?;
     if v.min_element() < 0.0 {
@@ -174,8 +186,8 @@ fn build_scene(path: &Path, text: &str, dir: &Path, file: SceneFile) -> Result<S
     // ---- Camera ----
     let c = &file.camera;
     let camera = Camera::new(
-        finite3(path, "camera.position", c.position)?,
-        finite3(path, "camera.look_at", c.look_at)?,
+        position3(path, "camera.position", c.position)?,
+        position3(path, "camera.look_at", c.look_at)?,
         finite3(path, "camera.up", c.up)?,
         c.fov_y,
         c.resolution[0],
@@ -245,14 +257,14 @@ fn build_scene(path: &Path, text: &str, dir: &Path, file: SceneFile) -> Result<S
         let field = format!("light[{li}]");
         lights.push(match l {
             LightDesc::Point { position, intensity } => Light::Point {
-                position: finite3(path, &format!("{field}.position"), *position)?,
+                position: position3(path, &format!("{field}.position"), *position)?,
                 intensity: non_negative3(path, &format!("{field}.intensity"), *intensity)?,
             },
             LightDesc::Spot { position, direction, look_at, intensity, inner_angle, outer_angle } => {
-                let position = finite3(path, &format!("{field}.position"), *position)?;
+                let position = position3(path, &format!("{field}.position"), *position)?;
                 let dir = match (direction, look_at) {
                     (Some(d), None) => finite3(path, &format!("{field}.direction"), *d)?,
-                    (None, Some(t)) => finite3(path, &format!("{field}.look_at"), *t)? - position,
+                    (None, Some(t)) => position3(path, &format!("{field}.look_at"), *t)? - position,
                     _ => {
                         return Err(Error::invalid(
                             path,
@@ -304,7 +316,7 @@ fn mesh_transform(path: &Path, field: &str, t: Option<&TransformDesc>) -> Result
         return Ok(Mat4::IDENTITY);
     };
     let translate = match t.translate {
-        Some(v) => finite3(path, &format!("{field}.transform.translate"), v)?,
+        Some(v) => position3(path, &format!("{field}.transform.translate"), v)?,
         None => Vec3::ZERO,
     };
     let rotate = match t.rotate {
@@ -425,19 +437,16 @@ fn load_obj(
     };
     let (models, mats) = tobj::load_obj_buf(&mut BufReader::new(text.as_bytes()), &opts, |p| {
         let mtl_path = obj_dir.join(p);
-        match std::fs::File::open(&mtl_path) {
-            Ok(f) => tobj::load_mtl_buf(&mut BufReader::new(f)).map_err(|e| {
+        match crate::scene::obj::read_mtl_text(&mtl_path) {
+            Ok(text) => tobj::load_mtl_buf(&mut BufReader::new(text.as_bytes())).map_err(|e| {
                 *mtl_error.borrow_mut() = Some(Error::Obj {
                     path: mtl_path.clone(),
                     message: e.to_string(),
                 });
                 e
             }),
-            Err(reason) => {
-                *mtl_error.borrow_mut() = Some(Error::Io {
-                    path: mtl_path.clone(),
-                    reason,
-                });
+            Err(e) => {
+                *mtl_error.borrow_mut() = Some(e);
                 Err(tobj::LoadError::OpenFileFailed)
             }
         }

@@ -9,6 +9,9 @@ use crate::scene::Scene;
 use std::collections::HashMap;
 use std::path::Path;
 
+/// How deep elements may nest (`<scene>` is 1; Mitsuba scenes nest a handful deep).
+pub const MAX_DEPTH: usize = 64;
+
 /// Options of an import.
 #[derive(Clone, Debug, Default)]
 pub struct ImportOptions {
@@ -50,6 +53,21 @@ fn load_with(path: &Path, opts: &ImportOptions, prefetch: bool) -> Result<Scene>
     };
     if root.tag_name().name() != "scene" {
         return Err(doc.err(root, "the root element must be <scene>"));
+    }
+    // The builder walks nested objects recursively: a bound on the depth bounds its stack.
+    let mut stack = vec![(root, 1usize)];
+    while let Some((node, depth)) = stack.pop() {
+        if depth > MAX_DEPTH {
+            return Err(doc.err(
+                node,
+                format!("elements are nested more than {MAX_DEPTH} deep"),
+            ));
+        }
+        stack.extend(
+            node.children()
+                .filter(|c| c.is_element())
+                .map(|c| (c, depth + 1)),
+        );
     }
     // Parameters: <default> elements, then the command line.
     for c in root.children().filter(|c| c.has_tag_name("default")) {
