@@ -93,9 +93,9 @@ fn a_guided_build_stays_within_its_memory_budget() {
     );
 }
 
-/// A thinned pass keeps the same particles with the same weights, bit for bit, whatever
-/// the thread count (and so the batches between its budget checks: 16 chunks on one
-/// thread, 32 on eight).
+/// A thinned pass keeps the same particles with the same weights, bit for bit, on one
+/// thread and on eight (that they do not depend on the batches between the budget checks
+/// either is the unit test `the_particles_kept_do_not_depend_on_the_batches`).
 #[test]
 fn a_thinned_pass_is_the_same_on_any_thread_count() {
     let _alone = ALONE.lock().unwrap();

@@ -17,7 +17,7 @@ use std::marker::PhantomData;
 use std::ops::Range;
 
 use super::pass::PassSettings;
-use super::thinning::thin;
+use super::thinning::Kept;
 
 const CHUNK: usize = 2048;
 
@@ -122,11 +122,14 @@ pub(super) fn run_chunks<'a>(
             .reserve(outs.iter().map(|o| o.particles.len()).sum());
         for mut o in outs {
             all.drawn += o.particles.len();
-            thin(&mut o.particles, &mut o.emission_points, 0, all.thinning);
+            let kept = Kept {
+                particles: &mut all.particles,
+                seeds: &mut all.emission_points,
+                level: &mut all.thinning,
+            };
+            kept.append(&mut o.particles, &mut o.emission_points);
             all.guided.0 += o.guided.0;
             all.guided.1 += o.guided.1;
-            all.particles.extend_from_slice(&o.particles);
-            all.emission_points.extend_from_slice(&o.emission_points);
             if all.escaped.len() < o.escaped.len() {
                 all.escaped.resize(o.escaped.len(), Rgb::ZERO);
             }
@@ -134,16 +137,12 @@ pub(super) fn run_chunks<'a>(
                 *e += *x;
             }
         }
-        while all.particles.len() > max_particles && all.thinning < 63 {
-            let from = all.thinning;
-            all.thinning += 1;
-            thin(
-                &mut all.particles,
-                &mut all.emission_points,
-                from,
-                all.thinning,
-            );
-        }
+        let kept = Kept {
+            particles: &mut all.particles,
+            seeds: &mut all.emission_points,
+            level: &mut all.thinning,
+        };
+        kept.within(max_particles);
     }
     if all.thinning > 0 {
         all.particles.shrink_to_fit();

@@ -68,6 +68,33 @@ pub(super) fn thin(particles: &mut Vec<ParticleInput>, seeds: &mut Vec<Seed>, fr
     seeds.retain(|s| kept(s.position, s.normal, to));
 }
 
+/// What a pass has kept so far, at its thinning level: the batches of a pass are appended
+/// in order and the level raised after each while the particles are more than the pass's
+/// share ([`Kept::within`]). The particles kept in the end do not depend on the batches.
+pub(super) struct Kept<'a> {
+    pub(super) particles: &'a mut Vec<ParticleInput>,
+    pub(super) seeds: &'a mut Vec<Seed>,
+    pub(super) level: &'a mut u32,
+}
+
+impl Kept<'_> {
+    /// Appends a batch's particles and seeds (drawn at level 0), thinned to the level.
+    pub(super) fn append(self, particles: &mut Vec<ParticleInput>, seeds: &mut Vec<Seed>) {
+        thin(particles, seeds, 0, *self.level);
+        self.particles.append(particles);
+        self.seeds.append(seeds);
+    }
+
+    /// Raises the level while the particles are more than `max`.
+    pub(super) fn within(self, max: usize) {
+        while self.particles.len() > max && *self.level < 63 {
+            let from = *self.level;
+            *self.level += 1;
+            thin(self.particles, self.seeds, from, *self.level);
+        }
+    }
+}
+
 impl PassOutput {
     /// Thins this pass (kept at `self.stats.thinning`) to `level`.
     pub fn thin_to(&mut self, level: u32) {
@@ -78,9 +105,12 @@ impl PassOutput {
 
     /// Thins this pass until it holds at most `max` particles.
     pub fn within(&mut self, max: usize) {
-        while self.particles.len() > max && self.stats.thinning < 63 {
-            self.thin_to(self.stats.thinning + 1);
-        }
+        let kept = Kept {
+            particles: &mut self.particles,
+            seeds: &mut self.emission_points,
+            level: &mut self.stats.thinning,
+        };
+        kept.within(max);
     }
 
     /// The share of the drawn particles this pass kept: `2^-thinning`.
@@ -135,6 +165,53 @@ mod tests {
             };
             assert!(last.iter().zip(&p).all(|(a, b)| same(a, b)));
             last = p;
+        }
+    }
+
+    /// The particles a pass keeps do not depend on its batches (so neither on its thread
+    /// count): the same 100,000 particles appended in batches of 1,000, 7,000 and all at
+    /// once, each followed by the budget check, end at the same level with the same
+    /// particles and weights, bit for bit, and within the budget.
+    #[test]
+    fn the_particles_kept_do_not_depend_on_the_batches() {
+        let all = particles(100_000);
+        let max = 9_000;
+        let run = |batch: usize| {
+            let (mut kept, mut seeds, mut level) = (Vec::new(), Vec::new(), 0u32);
+            for chunk in all.chunks(batch) {
+                let k = Kept {
+                    particles: &mut kept,
+                    seeds: &mut seeds,
+                    level: &mut level,
+                };
+                k.append(&mut chunk.to_vec(), &mut Vec::new());
+                let k = Kept {
+                    particles: &mut kept,
+                    seeds: &mut seeds,
+                    level: &mut level,
+                };
+                k.within(max);
+            }
+            (kept, level)
+        };
+        let bits = |p: &[ParticleInput]| -> Vec<[u32; 4]> {
+            p.iter()
+                .map(|q| {
+                    let (a, w) = (q.position.to_array(), q.weight.x);
+                    [a[0], a[1], a[2], w].map(f32::to_bits)
+                })
+                .collect()
+        };
+        let (once, level) = run(all.len());
+        assert!(
+            level >= 4 && once.len() <= max,
+            "level {level}, {} kept",
+            once.len()
+        );
+        for batch in [1_000, 7_000] {
+            let (kept, l) = run(batch);
+            assert_eq!(l, level, "batches of {batch}");
+            assert_eq!(bits(&kept), bits(&once), "batches of {batch}");
         }
     }
 }
