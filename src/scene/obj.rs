@@ -22,13 +22,18 @@ pub fn is_degenerate(geom: &TriangleGeom) -> bool {
 /// An OBJ file's text, checked for vertex coordinates that are not finite numbers (which
 /// tobj would read as NaN).
 pub fn read_obj_text(obj_path: &Path) -> Result<String> {
-    let text = std::fs::read_to_string(obj_path).map_err(|reason| Error::Io {
-        path: obj_path.to_path_buf(),
+    read_checked(obj_path, find_bad_vertex)
+}
+
+/// A file's text, or an error at the first line `bad` finds wrong (with what is wrong).
+fn read_checked(path: &Path, bad: fn(&str) -> Option<(usize, String)>) -> Result<String> {
+    let text = std::fs::read_to_string(path).map_err(|reason| Error::Io {
+        path: path.to_path_buf(),
         reason,
     })?;
-    if let Some((line, message)) = find_bad_vertex(&text) {
+    if let Some((line, message)) = bad(&text) {
         return Err(Error::Syntax {
-            path: obj_path.to_path_buf(),
+            path: path.to_path_buf(),
             line,
             column: 1,
             message,
@@ -71,19 +76,7 @@ fn find_bad_vertex(text: &str) -> Option<(usize, String)> {
 /// numbers and every scalar (`Ns`, `Ni`, `d`) a finite number; the first line that is not
 /// is named.
 pub fn read_mtl_text(mtl_path: &Path) -> Result<String> {
-    let text = std::fs::read_to_string(mtl_path).map_err(|reason| Error::Io {
-        path: mtl_path.to_path_buf(),
-        reason,
-    })?;
-    if let Some((line, message)) = find_bad_mtl_number(&text) {
-        return Err(Error::Syntax {
-            path: mtl_path.to_path_buf(),
-            line,
-            column: 1,
-            message,
-        });
-    }
-    Ok(text)
+    read_checked(mtl_path, find_bad_mtl_number)
 }
 
 /// The first MTL line whose colour or scalar is not finite numbers, and what is wrong.

@@ -80,11 +80,6 @@ impl<F: Features> Visitor for Storing<'_, F> {
     fn restore(&mut self, _b: ()) {}
 }
 
-/// Chunks traced between two checks of a pass's particle budget: per worker thread (at
-/// least [`MIN_BATCH_CHUNKS`]), and no more than hold a quarter of the budget's particles
-/// at [`PARTICLES_PER_PATH`] (what a pass holds past its budget is at most one batch).
-const BATCH_CHUNKS_PER_THREAD: usize = 4;
-const MIN_BATCH_CHUNKS: usize = 16;
 /// Particles a path stores, for the batch size: about 8 on door, fewer on open scenes.
 const PARTICLES_PER_PATH: usize = 8;
 
@@ -99,10 +94,12 @@ pub(super) fn run_chunks<'a>(
     path: impl Fn(usize, &mut ChunkOut, &mut SamplerState<'a>) + Sync,
 ) -> ChunkOut {
     let chunks = paths.len().div_ceil(CHUNK);
-    let batch = (BATCH_CHUNKS_PER_THREAD * rayon::current_num_threads())
-        .max(MIN_BATCH_CHUNKS)
-        .min(max_particles / (4 * CHUNK * PARTICLES_PER_PATH))
-        .max(1);
+    // Chunks traced between two checks of the budget: as many as hold a quarter of the
+    // budget's particles at [`PARTICLES_PER_PATH`] (the whole pass at once under the
+    // default budget), and one per worker at least, so that what a pass holds past its
+    // budget is at most one batch and every worker has a chunk.
+    let batch =
+        (max_particles / (4 * CHUNK * PARTICLES_PER_PATH)).max(rayon::current_num_threads());
     let mut all = ChunkOut::default();
     for first_chunk in (0..chunks).step_by(batch) {
         let outs: Vec<ChunkOut> = (first_chunk..(first_chunk + batch).min(chunks))
