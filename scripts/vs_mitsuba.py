@@ -45,11 +45,13 @@ BUNDLED = {
     "glass": dict(resx=48, resy=48, rfilter="box", max_depth=4, batches=32, spp=512),
     "panes": dict(resx=48, resy=48, rfilter="box", max_depth=8, batches=32, spp=512),
     "slit": dict(resx=64, resy=48, rfilter="box", max_depth=10, batches=32, spp=1024),
+    "ltcheck": dict(resx=32, resy=32, rfilter="box", max_depth=8, batches=32, spp=1024),
 }
 
 # The public scenes kept in the repository (scenes/public/<name>/scene.xml, unchanged but for
-# what scenes/public/README.md lists): their own -D parameters, batches x spp. Their
-# references sit beside the bundled ones as public/<name>-{mean,stderr}.exr.
+# what each SOURCE.md says) or fetched by scripts/public_scenes.py (scenes/public/fetched/):
+# their own -D parameters, batches x spp. Their references sit beside the bundled ones as
+# public/<name>-{mean,stderr}.exr.
 PUBLIC = {
     "veach-mis": dict(defines=dict(resx=64, resy=36), batches=32, spp=1024),
     "veach-bidir": dict(defines=dict(res=48), batches=32, spp=256),
@@ -182,6 +184,12 @@ def cmd_references(args):
         jobs.append((name, xml, {k: p[k] for k in ("resx", "resy", "rfilter", "max_depth")}, p))
     for name, p in PUBLIC.items():
         xml = os.path.join(ROOT, "scenes", "public", name, "scene.xml")
+        if not os.path.exists(xml):
+            # Fetched by scripts/public_scenes.py, where it is.
+            xml = os.path.join(ROOT, "scenes", "public", "fetched", name, "scene.xml")
+            if not os.path.exists(xml):
+                print(f"public/{name}: skipped, {xml} is absent (scripts/public_scenes.py fetch {name})")
+                continue
         jobs.append((f"public/{name}", xml, p["defines"], p))
     only = set(args.only or [j[0] for j in jobs])
     for name, xml, defines, p in (j for j in jobs if j[0] in only):

@@ -425,6 +425,32 @@ fn pane_room_light_tracing_matches_mitsuba() {
     check(&PANES, "lt-bsdf", FilmMode::Splat);
 }
 
+/// `scenes/ltcheck`: a coarse diffuse sphere with smooth shading normals, a two-sided GGX
+/// rough conductor panel seen from its back with tilted shading normals, a glass sphere and a
+/// one-sided rectangle light, where guided and unguided light tracing are checked against path
+/// tracing (`tests/guided.rs`); here path tracing and the combined image against Mitsuba 3.
+/// (Light tracing cannot see the glass sphere directly, which Mitsuba's `path` does.)
+const LTCHECK: Case = Case {
+    name: "ltcheck",
+    res: (32, 32),
+    rfilter: "box",
+    max_depth: 8,
+    replicates: 24,
+    spp: 64,
+    sheets_connect: false,
+    source: Source::Bundled,
+};
+
+#[test]
+fn lt_check_scene_matches_mitsuba() {
+    check(&LTCHECK, "pt-bsdf", FilmMode::Splat);
+}
+
+#[test]
+fn lt_check_scene_combined_image_matches_mitsuba() {
+    check_seeded(&LTCHECK, "combined-bsdf", FilmMode::Splat, 7100);
+}
+
 /// `scenes/public/veach-mis`: Bitterli's "Veach, MIS" (Veach 1997, fig. 9.2), four glossy
 /// plates (Beckmann, α 0.01-0.25) lit by four spheres of one power and radii 1 to 0.05. The
 /// small spheres' reflections in the smooth plates are the heavy tail: the image mean's

@@ -37,15 +37,20 @@
 //!   straight transmission `1 - R'` (`wi = -wo`), with `k_s` and `T_f` as factors and no
 //!   `1/η²` (the ray leaves into the medium it came from).
 //!
-//! Sidedness: two-sided surfaces reflect on whichever side `wo` is (the frame is flipped to
-//! it); a one-sided surface (Mitsuba's BSDFs unless wrapped in `twosided`) is black unless
+//! Sidedness: two-sided surfaces reflect on whichever side of the shading normal `wo` is (the
+//! frame is flipped to it, as Mitsuba's `twosided` flips where `cos θ_i < 0`); a one-sided surface (Mitsuba's BSDFs unless wrapped in `twosided`) is black unless
 //! both directions are above the shading normal, as Mitsuba evaluates it. Glass and thin
 //! glass scatter on both sides regardless. The front is the side the shading normal faces,
 //! also where a mesh is wound against its vertex normals (`SurfaceHit::facing_ng`). Glass
 //! reads wo's side in the shading frame, as Mitsuba's `dielectric` (`cos θ_i`): near a smooth
 //! mesh's silhouette, where wo is above the geometric normal and below the shading normal,
 //! the path arrives from inside, and the direction the shading frame gives stands even across
-//! the geometric plane.
+//! the geometric plane. The geometric normal decides nothing here, as in Mitsuba, which
+//! evaluates every BSDF in the shading frame alone: where shading normals are tilted against
+//! the faces, a reflection may arrive from or leave below the geometric plane (`scenes/ltcheck`,
+//! whose panel is seen from its back through tilted normals, agrees with Mitsuba block by
+//! block only so; a rule that also asked both directions to lie on one side of the geometric
+//! normal left it 10-30% darker there).
 //!
 //! The lobes a material resolves to at a point, with their `f` and densities in the local
 //! frame, are in `lobes.rs` (the Blinn lobe in `blinn.rs`); the BSDF at a point, which adds

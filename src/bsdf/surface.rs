@@ -105,10 +105,11 @@ impl Bsdf {
     }
 
     /// The side the reflecting kinds work on for `wo`: -1 when a two-sided surface is seen
-    /// from below its geometric normal (the local frame is flipped), else 1.
+    /// from below its shading normal (the local frame is flipped), else 1: Mitsuba 3's
+    /// `twosided`, which flips where `cos θ_i < 0` in the shading frame.
     #[inline]
     fn reflection_side(&self, wo: Vec3) -> f32 {
-        if self.two_sided && wo.dot(self.ng) < 0.0 {
+        if self.two_sided && wo.dot(self.frame.z) < 0.0 {
             -1.0
         } else {
             1.0
@@ -116,13 +117,12 @@ impl Bsdf {
     }
 
     /// Local directions of a reflection, flipped to the upper side on two-sided surfaces.
-    /// Returns `None` when `wo` and `wi` are not both on the same geometric side (no
-    /// reflection through a surface) or not both above the (flipped) shading horizon.
+    /// Returns `None` when `wo` and `wi` are not both above the (flipped) shading horizon.
+    /// The geometric normal is not consulted, as in Mitsuba 3, which evaluates every BSDF in
+    /// the shading frame alone: where the shading normal is tilted, a reflection may arrive
+    /// from or leave below the geometric plane.
     #[inline]
     fn reflection_local(&self, wo: Vec3, wi: Vec3) -> Option<(Vec3, Vec3)> {
-        if wo.dot(self.ng) * wi.dot(self.ng) <= 0.0 {
-            return None;
-        }
         let side = self.reflection_side(wo);
         let mut lo = self.frame.to_local(wo);
         let mut li = self.frame.to_local(wi);
@@ -161,9 +161,6 @@ impl Bsdf {
     /// the Lambertian lobe does not read.
     #[inline]
     fn lambert_cosines(&self, wo: Vec3, wi: Vec3) -> Option<(f32, f32)> {
-        if wo.dot(self.ng) * wi.dot(self.ng) <= 0.0 {
-            return None;
-        }
         let side = self.reflection_side(wo);
         let (lo, li) = (wo.dot(self.frame.z) * side, wi.dot(self.frame.z) * side);
         if lo <= 0.0 || li <= 0.0 {
@@ -265,12 +262,13 @@ impl Bsdf {
         transmitted: bool,
     ) -> Option<BsdfSample> {
         let wi = self.frame.to_world(Vec3::new(li.x, li.y, li.z * side));
-        // A reflection stays on wo's side of the geometric normal and a transmission crosses
-        // it; but glass, as Mitsuba's `dielectric`, keeps the direction its shading frame
-        // gives, on either side (near a smooth mesh's silhouette): the path goes on from there.
+        // The shading frame alone decides, as in Mitsuba 3: a reflection may leave below the
+        // geometric plane where the shading normal is tilted, and glass keeps the direction
+        // its shading frame gives on either side (near a smooth mesh's silhouette). Only a
+        // thin sheet's straight transmission must cross the surface.
         let crosses = wi.dot(self.ng) * wo.dot(self.ng);
         let glass = matches!(self.lobes, Lobes::Glass { .. });
-        if !glass && ((transmitted && crosses >= 0.0) || (!transmitted && crosses <= 0.0)) {
+        if !glass && transmitted && crosses >= 0.0 {
             return None;
         }
         let corr = self.adjoint_correction(wo, wi, mode);
