@@ -3,7 +3,8 @@
 a `directional` emitter, and the same lit by an `envmap` (a 64 x 32 sky with a bright sun,
 turned by a `to_world` rotation, seen in the background).
 
-Writes the scenes and the map (tests/emitters/directional.xml, envmap.xml, sky.exr), renders
+Writes the scenes and the map (tests/emitters/directional.xml, envmap.xml, sky.exr, and the map
+as sky.hdr too), renders
 each with Mitsuba's `path` over independent seeds, and writes the means of the whole image
 with their standard errors (the spread of the seeds' means over their square root) to
 tests/emitters/mitsuba-means.json, which the test reads: it needs no Python.
@@ -90,6 +91,8 @@ def main():
     mi.set_variant("scalar_rgb")
     os.makedirs(OUT, exist_ok=True)
     mi.Bitmap(sky()).write(os.path.join(OUT, "sky.exr"))
+    # The same map as Radiance RGBE, for the reader of .hdr files.
+    mi.Bitmap(sky()).write(os.path.join(OUT, "sky.hdr"))
     result = {"mitsuba": mi.__version__, "variant": "scalar_rgb", "scenes": {}}
     for name, xml in SCENES.items():
         path = os.path.join(OUT, name + ".xml")

@@ -500,3 +500,78 @@ fn bad_envmaps_and_directional_lights_name_their_file_and_element() {
         }
     }
 }
+
+/// The map read from Radiance RGBE (`sky.hdr`) is the one read from OpenEXR (`sky.exr`), both
+/// written by `scripts/emitter_means.py` from the same texels: equal within RGBE's shared
+/// exponent (8 bits of mantissa for the largest channel of a texel).
+#[test]
+fn hdr_and_exr_maps_read_alike() {
+    let dir = scene_file("sky").parent().unwrap().to_path_buf();
+    let exr = EnvMap::load(&dir.join("sky.exr"), Mat3::IDENTITY).unwrap();
+    let hdr = EnvMap::load(&dir.join("sky.hdr"), Mat3::IDENTITY).unwrap();
+    assert_eq!(exr.size(), (64, 32));
+    assert_eq!(hdr.size(), exr.size());
+    for y in 0..32 {
+        for x in 0..64 {
+            let (a, b) = (exr.texel(x, y), hdr.texel(x, y));
+            assert!(
+                (a - b).abs().max_element() <= a.max_element() / 128.0,
+                "texel ({x}, {y}): {a} from the EXR, {b} from the HDR"
+            );
+        }
+    }
+}
+
+/// `footprint export` writes both lights back as Mitsuba emitters that import to the same
+/// lights: the directional light's direction and irradiance, the map's texels, scale and
+/// rotation.
+#[test]
+fn export_round_trip_keeps_both_lights() {
+    for name in ["directional", "envmap"] {
+        let scene = load(name);
+        let out = std::env::temp_dir().join(format!(
+            "footprint-emitters-export-{name}-{}",
+            std::process::id()
+        ));
+        let _ = std::fs::remove_dir_all(&out);
+        std::fs::create_dir_all(&out).unwrap();
+        mitsuba::export::export(&scene, &scene_file(name), &out).unwrap();
+        let back = mitsuba::load(&out.join("scene.xml"), &ImportOptions::default()).unwrap();
+        let (a, b) = (&scene.lights[0], &back.lights[0]);
+        match (a, b) {
+            (
+                Light::Directional {
+                    dir: d0,
+                    irradiance: e0,
+                    ..
+                },
+                Light::Directional {
+                    dir: d1,
+                    irradiance: e1,
+                    ..
+                },
+            ) => assert!(d0.abs_diff_eq(*d1, 1e-6) && e0 == e1, "{a:?} against {b:?}"),
+            (
+                Light::Environment {
+                    le: l0,
+                    map: Some(m0),
+                    ..
+                },
+                Light::Environment {
+                    le: l1,
+                    map: Some(m1),
+                    ..
+                },
+            ) => {
+                assert_eq!(l0, l1);
+                assert!(m0.to_world().abs_diff_eq(m1.to_world(), 1e-6));
+                assert_eq!(m0.size(), m1.size());
+                let (w, h) = m0.size();
+                for k in 0..w * h {
+                    assert_eq!(m0.texel(k % w, k / w), m1.texel(k % w, k / w));
+                }
+            }
+            _ => panic!("{name}: {a:?} came back as {b:?}"),
+        }
+    }
+}

@@ -121,10 +121,17 @@ impl EnvMap {
                 (img.width as usize, img.height as usize, img.pixels)
             }
             "hdr" => {
-                let reader = image::ImageReader::open(path).map_err(|e| e.to_string())?;
-                let mut reader = reader
-                    .with_guessed_format()
-                    .map_err(|e| format!("cannot read the file ({e})"))?;
+                let mut bytes =
+                    std::fs::read(path).map_err(|e| format!("cannot read the file ({e})"))?;
+                // Radiance files open with `#?RADIANCE` or, as Mitsuba and others write them,
+                // `#?RGBE`; the decoder knows the first.
+                if bytes.starts_with(b"#?RGBE\n") {
+                    bytes.splice(..6, b"#?RADIANCE".iter().copied());
+                }
+                let mut reader = image::ImageReader::with_format(
+                    std::io::Cursor::new(bytes),
+                    image::ImageFormat::Hdr,
+                );
                 let mut limits = image::Limits::default();
                 limits.max_image_width = Some(crate::scene::texture::MAX_TEXTURE_SIDE);
                 limits.max_image_height = Some(crate::scene::texture::MAX_TEXTURE_SIDE);
