@@ -575,3 +575,70 @@ fn export_round_trip_keeps_both_lights() {
         }
     }
 }
+
+/// TOML scenes take both lights: `type = "directional"` (`direction`, `irradiance`) and
+/// `type = "envmap"` (`file` relative to the scene, `scale`); a bad map names its field.
+#[test]
+fn toml_scenes_read_both_lights() {
+    let dir = std::env::temp_dir().join(format!("footprint-emitters-toml-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("floor.obj"),
+        common::box_obj([-2.0, -0.1, -2.0], [2.0, 0.0, 2.0], 1, "white"),
+    )
+    .unwrap();
+    std::fs::write(dir.join("floor.mtl"), "newmtl white\nKd 0.5 0.5 0.5\n").unwrap();
+    let sky = scene_file("sky").with_extension("exr");
+    let toml = |map: &str| {
+        format!(
+            r#"[camera]
+position = [0.0, 2.0, 5.0]
+look_at = [0.0, 0.0, 0.0]
+fov_y = 40.0
+resolution = [8, 8]
+
+[[mesh]]
+file = "floor.obj"
+
+[[light]]
+type = "directional"
+direction = [0.0, -2.0, 0.0]
+irradiance = [1.0, 2.0, 3.0]
+
+[[light]]
+type = "envmap"
+file = "{}"
+scale = 2.0
+"#,
+            map.replace('\\', "/")
+        )
+    };
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, toml(&sky.display().to_string())).unwrap();
+    let scene = footprint::scene::load::load_scene(&path).unwrap();
+    assert!(scene.effects.directional_lights && scene.effects.environment);
+    match &scene.lights[..2] {
+        [
+            Light::Directional {
+                dir, irradiance, ..
+            },
+            Light::Environment {
+                le, map: Some(m), ..
+            },
+        ] => {
+            assert_eq!((*dir, *irradiance), (Vec3::NEG_Y, Rgb::new(1.0, 2.0, 3.0)));
+            assert_eq!((*le, m.size()), (Rgb::splat(2.0), (64, 32)));
+        }
+        other => panic!("{other:?}"),
+    }
+    std::fs::write(&path, toml("missing.exr")).unwrap();
+    let Err(e) = footprint::scene::load::load_scene(&path) else {
+        panic!("a missing map loaded");
+    };
+    let e = e.to_string();
+    assert!(
+        e.contains("light[1].file") && e.contains("missing.exr"),
+        "{e}"
+    );
+}
