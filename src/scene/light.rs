@@ -15,7 +15,8 @@
 //! for "to infinity". Their emitted rays start on the disk of the scene's bounding sphere
 //! (radius `r`) perpendicular to the emitted direction, so `pdf_pos = 1 / (π r²)` is per unit
 //! area of that disk (pbrt-v4's `DistantLight::SampleLe`, `UniformInfiniteLight::SampleLe`
-//! and `ImageInfiniteLight::SampleLe`, pbrt-v4 §12.5 and §12.6):
+//! and `ImageInfiniteLight::SampleLe`; pbrt-v4 §12.3, "Distant Lights", and §12.5, "Infinite
+//! Area Lights"):
 //!
 //! * the directional light is a delta in direction: next-event estimation reaches it along
 //!   one direction with `pdf_w = 1` (as point lights), an emitted ray has `pdf_dir = 1`, and
