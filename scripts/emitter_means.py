@@ -10,7 +10,7 @@ with their standard errors (the spread of the seeds' means over their square roo
 tests/emitters/mitsuba-means.json, which the test reads: it needs no Python.
 
     pip install mitsuba numpy      # once
-    python3 scripts/emitter_means.py [--seeds 32] [--spp 256]
+    python3 scripts/emitter_means.py [--seeds 32] [--spp 1024]
 """
 import argparse
 import json
@@ -86,7 +86,7 @@ def sky(width=64, height=32):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--seeds", type=int, default=32)
-    ap.add_argument("--spp", type=int, default=256)
+    ap.add_argument("--spp", type=int, default=1024)
     a = ap.parse_args()
     mi.set_variant("scalar_rgb")
     os.makedirs(OUT, exist_ok=True)
