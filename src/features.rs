@@ -29,9 +29,9 @@ pub trait Features: Send + Sync + 'static {
     /// Delta lobes (mirrors, glass, conductors, the coat of smooth plastic).
     const SPECULAR: bool;
     const AREA_LIGHTS: bool;
-    /// Point and spot lights.
+    /// Point, spot and directional lights.
     const DELTA_LIGHTS: bool;
-    /// A uniform environment.
+    /// An environment (uniform or from an image).
     const ENVIRONMENT: bool;
     /// Every surface is Lambertian: the BSDF's fast path.
     const LAMBERTIAN: bool = !Self::GLOSSY && !Self::SPECULAR;

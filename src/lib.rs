@@ -23,6 +23,7 @@
 
 pub mod atomic_file;
 pub mod bsdf;
+pub mod distribution_2d;
 pub mod error;
 pub mod features;
 pub mod film;

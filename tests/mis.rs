@@ -58,7 +58,11 @@ fn random_path(scene: &Scene, rng: &mut Rng, len: usize) -> Option<Path> {
 /// The three weights of every checked path, with the densities `guided` or not, under the
 /// guide settings `params` (what the regions sample from and what the weights read).
 fn check_scene(name: &str, guided: bool, params: &GuideParams) -> Vec<[f32; 3]> {
-    let mut scene = load_scene(&scene_path(name)).unwrap();
+    check(load_scene(&scene_path(name)).unwrap(), name, guided, params)
+}
+
+/// [`check_scene`] on a loaded scene.
+fn check(mut scene: Scene, name: &str, guided: bool, params: &GuideParams) -> Vec<[f32; 3]> {
     scene.camera = scene.camera.with_resolution(32, 32).unwrap();
     scene.maps.photons = 30_000;
     scene.maps.importons = 30_000;
@@ -132,7 +136,7 @@ fn check_scene(name: &str, guided: bool, params: &GuideParams) -> Vec<[f32; 3]> 
                 cm.arrive(&scene, k, ls.wi, ls.p, n);
                 cm.light_hit(&scene, li as u32, k, -ls.wi, ls.p).weight()
             }
-            None => 0.0, // a camera path cannot hit a point or spot light
+            None => 0.0, // a camera path cannot hit a point, spot or directional light
         };
         // ---- The light subpath: y0 = x_k, y1 = x_{k-1}, ..., y_{k-1} = x1 ----
         let mut lm = LightMis::new(&scene, &d, li as u32, ls.p, ls.n);
@@ -220,5 +224,22 @@ fn weights_sum_to_one_on_random_paths_in_every_bundled_scene() {
             changed * 10 > guided.len(),
             "{name}: guided weights barely differ"
         );
+    }
+}
+
+/// The same under a directional light (`tests/emitters/directional.xml`): next-event estimation
+/// and light tracing are the strategies that make its paths, the light path's first vertex
+/// of area density `pdf_pos |cos θ|` from the bounding disk.
+#[test]
+fn weights_sum_to_one_under_a_directional_light() {
+    let xml = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../tests/emitters/directional.xml");
+    let scene = footprint::scene::mitsuba::load(&xml, &Default::default()).unwrap();
+    assert!(scene.lights.iter().all(|l| l.is_delta() && l.is_infinite()));
+    let defaults = GuideParams::default();
+    for guided in [false, true] {
+        let w = check(scene.clone(), "directional", guided, &defaults);
+        // Both strategies carry weight.
+        assert!(w.iter().any(|w| w[1] > 0.1) && w.iter().any(|w| w[2] > 0.1));
     }
 }

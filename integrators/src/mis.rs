@@ -92,6 +92,35 @@ impl Densities<'_, '_> {
         }
     }
 
+    /// The area density at `next` (normal `n_next`) of a light path's first segment from the
+    /// point `p` (normal `n`) of `light` along `dir`, without the choice of the light and the
+    /// point: the emission's direction density turned into an area density at `next`. The
+    /// directional light emits along one direction from a point of the bounding disk of
+    /// density `pdf_pos` per unit area, so the first vertex's area density is
+    /// `pdf_pos |cos θ_next|` (SmallVCM's `DirectionalLight`: no distance², the direction's
+    /// delta shared with next-event estimation). Its positional density is the disk's: the
+    /// caller's factor for the light ([`light_pos_pdf`]) is the choice alone, as a point
+    /// light's, which next-event estimation's weight shares.
+    #[inline]
+    pub fn emission_area(
+        &self,
+        light: &Light,
+        p: Vec3,
+        n: Option<Vec3>,
+        dir: Vec3,
+        next: Vec3,
+        n_next: Option<Vec3>,
+    ) -> f64 {
+        match light {
+            Light::Directional { .. } => {
+                let pdf_pos = light.disk_pdf().unwrap_or(0.0) as f64;
+                let cos = n_next.map_or(1.0, |m| (m.dot(dir) as f64).abs());
+                pdf_pos * cos
+            }
+            _ => to_area(self.emission(light, p, n, dir) as f64, p, next, n_next),
+        }
+    }
+
     /// The area density of sampling `next` from a vertex with `bsdf` at `p`, given the
     /// path's other neighbour in direction `toward_other` (unit), for a path of `mode`.
     /// `delta`: the path's direction at this vertex came from a delta lobe (per sample, not
@@ -181,7 +210,9 @@ pub struct PilotMis<T> {
     pub horizon: crate::moments::Horizon,
 }
 
-/// The unguided positional density of light `li` at one of its points: choice x area pdf.
+/// The unguided positional density of light `li` at one of its points: choice x area pdf
+/// (the choice alone for point, spot and directional lights: see
+/// [`Densities::emission_area`] for the directional light's disk).
 #[inline]
 pub fn light_pos_pdf(scene: &Scene, li: u32) -> f64 {
     let pmf = scene.light_pmf(li) as f64;
@@ -324,7 +355,7 @@ impl<'d> CameraMis<'d> {
                 Light::Area { n, .. } => Some(*n),
                 _ => None,
             };
-            let emit = to_area(self.d.emission(light, p, n, wo) as f64, p, b0.p, b0.n);
+            let emit = self.d.emission_area(light, p, n, wo, b0.p, b0.n);
             p_l * self.b_back * emit
         };
         Strategies::new([p0, p1, pk], 0)
@@ -358,12 +389,7 @@ impl<'d> CameraMis<'d> {
         let pk = if depth >= 2 && self.recent.first_delta {
             0.0
         } else {
-            let emit = to_area(
-                self.d.emission(light, ls.p, ls.n, -ls.wi) as f64,
-                ls.p,
-                p,
-                Some(ng),
-            );
+            let emit = self.d.emission_area(light, ls.p, ls.n, -ls.wi, p, Some(ng));
             let back = if depth >= 2 {
                 self.d
                     .step(TransportMode::Importance, bsdf, false, p, ls.wi, b0.p, b0.n)
@@ -392,7 +418,7 @@ pub struct LightMis<'d> {
     /// Camera-direction density of the light point from `y1` (0 for delta lights).
     pf_light: f64,
     p_l: f64,
-    /// The light is a point (delta in position): a camera path cannot hit it.
+    /// The light is a delta (a point, or the directional light): a camera path cannot hit it.
     delta_light: bool,
     /// `y_{j-1}`, `y_{j-2}`, and whether `y1` was left by a delta lobe (next-event
     /// estimation cannot reach it then).
@@ -445,12 +471,7 @@ impl<'d> LightMis<'d> {
     pub fn arrive(&mut self, light: &Light, depth: u32, dir: Vec3, p: Vec3, ng: Vec3) {
         let [b0, b1] = self.recent.before;
         self.l_fwd *= match b0.bsdf {
-            None => to_area(
-                self.d.emission(light, b0.p, b0.n, dir) as f64,
-                b0.p,
-                p,
-                Some(ng),
-            ),
+            None => self.d.emission_area(light, b0.p, b0.n, dir, p, Some(ng)),
             Some(b) => self.d.step(
                 TransportMode::Importance,
                 &b,

@@ -26,7 +26,9 @@ pub struct Effects {
     pub area_lights: bool,
     pub spot_lights: bool,
     pub point_lights: bool,
-    /// A uniform environment (Mitsuba's `constant` emitter): escaped paths see it.
+    /// A directional light (Mitsuba's `directional`): a delta light at infinity.
+    pub directional_lights: bool,
+    /// An environment (Mitsuba's `constant` or `envmap` emitter): escaped paths see it.
     pub environment: bool,
     /// A light path can reach a diffuse or glossy surface after a specular bounce
     /// (L S+ D): needs a specular surface and a non-specular one.
@@ -82,6 +84,7 @@ impl Effects {
                 Light::Area { .. } => e.area_lights = true,
                 Light::Spot { .. } => e.spot_lights = true,
                 Light::Point { .. } => e.point_lights = true,
+                Light::Directional { .. } => e.directional_lights = true,
                 Light::Environment { .. } => e.environment = true,
             }
         }
@@ -90,7 +93,7 @@ impl Effects {
     }
 
     /// `(name, present)` for every effect, in a fixed order.
-    pub fn list(&self) -> [(&'static str, bool); 12] {
+    pub fn list(&self) -> [(&'static str, bool); 13] {
         [
             ("diffuse", self.diffuse),
             ("glossy", self.glossy),
@@ -102,6 +105,7 @@ impl Effects {
             ("area lights", self.area_lights),
             ("spot lights", self.spot_lights),
             ("point lights", self.point_lights),
+            ("directional lights", self.directional_lights),
             ("environment", self.environment),
             ("caustic paths", self.caustics_possible),
         ]

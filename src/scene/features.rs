@@ -18,7 +18,7 @@ impl Specialisation {
     pub fn for_effects(e: &Effects) -> Self {
         let plain = !e.textures && !e.shading_normals && !e.environment;
         let lambert = !e.non_lambertian && !e.glossy && !e.specular_reflection && !e.refraction;
-        let delta_lights = e.spot_lights || e.point_lights;
+        let delta_lights = e.spot_lights || e.point_lights || e.directional_lights;
         if plain && lambert && !delta_lights {
             Specialisation::LambertArea
         } else if plain {

@@ -1,6 +1,7 @@
 //! Lights: emissive triangles (area lights), spot lights with inner/outer cone angles, point
-//! lights, and a uniform environment (Mitsuba's `constant` emitter). Each light offers what
-//! the two kinds of paths need:
+//! lights, a directional light (Mitsuba's `directional`), and an environment, uniform
+//! (Mitsuba's `constant`) or from an image (Mitsuba's `envmap`, [`EnvMap`]). Each light
+//! offers what the two kinds of paths need:
 //!
 //! * `sample_li`: a point on the light seen from a shading point (next-event estimation),
 //!   with its density per steradian at the shading point;
@@ -9,19 +10,31 @@
 //!   in proportion to their falloff, so every photon of a light carries the same flux;
 //! * `power`: the emitted flux, by which lights are chosen.
 //!
-//! The environment is at infinity: it is seen along directions, not at points. Next-event
-//! estimation samples its directions uniformly (a shadow ray of twice the scene's bounding
-//! radius stands for "to infinity"); its emitted rays start on the disk of the scene's bounding
-//! sphere facing the sampled direction (pbrt-v4's `UniformInfiniteLight::SampleLe`), so
-//! `pdf_pos` is per unit area of that disk and its flux is `π r² · 4π · L`.
+//! The directional light and the environment are at infinity: they are seen along
+//! directions, not at points, and a shadow ray of twice the scene's bounding radius stands
+//! for "to infinity". Their emitted rays start on the disk of the scene's bounding sphere
+//! (radius `r`) perpendicular to the emitted direction, so `pdf_pos = 1 / (π r²)` is per unit
+//! area of that disk (pbrt-v4's `DistantLight::SampleLe`, `UniformInfiniteLight::SampleLe`
+//! and `ImageInfiniteLight::SampleLe`; pbrt-v4 §12.3, "Distant Lights", and §12.5, "Infinite
+//! Area Lights"):
+//!
+//! * the directional light is a delta in direction: next-event estimation reaches it along
+//!   one direction with `pdf_w = 1` (as point lights), an emitted ray has `pdf_dir = 1`, and
+//!   its flux is `E π r²` for irradiance `E`; nothing hits it, and the camera does not see it;
+//! * the environment's directions are sampled uniformly (uniform radiance) or in proportion to
+//!   the map's radiance times `sin θ` ([`EnvMap`]), for next-event estimation and emission
+//!   alike; rays that leave the scene see it, and its flux is `π r² ∫ L dω` (`π r² · 4π · L`
+//!   when uniform).
 
 use crate::math::{Frame, PI, Rgb, luminance};
 use crate::sampling::{
     cosine_hemisphere_pdf, sample_cosine_hemisphere, sample_uniform_sphere,
     sample_uniform_triangle, uniform_sphere_pdf,
 };
+use crate::scene::envmap::EnvMap;
 use crate::scene::geometry::TriangleGeom;
 use glam::{Vec2, Vec3};
+use std::sync::Arc;
 
 #[derive(Clone, Debug)]
 pub enum Light {
@@ -46,9 +59,22 @@ pub enum Light {
         cos_outer: f32,
         profile: SpotProfile,
     },
-    /// Uniform radiance `le` arriving from every direction. `center` and `radius` bound the
-    /// scene (set by `Scene::new`).
-    Environment { le: Rgb, center: Vec3, radius: f32 },
+    /// Parallel light travelling along the unit `dir`, of irradiance `irradiance` (W/m²) on
+    /// a surface facing it. `center` and `radius` bound the scene (set by `Scene::new`).
+    Directional {
+        dir: Vec3,
+        irradiance: Rgb,
+        center: Vec3,
+        radius: f32,
+    },
+    /// Radiance arriving from every direction: `le` uniformly, or `le` times the map's value
+    /// where there is a `map`. `center` and `radius` bound the scene (set by `Scene::new`).
+    Environment {
+        le: Rgb,
+        map: Option<Arc<EnvMap>>,
+        center: Vec3,
+        radius: f32,
+    },
 }
 
 /// How a spot light falls off between its inner and outer cone.
@@ -104,13 +130,67 @@ fn smoothstep(a: f32, b: f32, x: f32) -> f32 {
 }
 
 impl Light {
-    /// Point and spot lights: a single position, reachable only by connection.
+    /// Point and spot lights (a single position) and the directional light (a single
+    /// direction): reachable only by connection.
     pub fn is_delta(&self) -> bool {
-        matches!(self, Light::Point { .. } | Light::Spot { .. })
+        matches!(
+            self,
+            Light::Point { .. } | Light::Spot { .. } | Light::Directional { .. }
+        )
     }
 
     pub fn is_environment(&self) -> bool {
         matches!(self, Light::Environment { .. })
+    }
+
+    /// The directional light and the environment: at infinity, their emitted rays start on
+    /// the scene's bounding disk, which no camera sees.
+    pub fn is_infinite(&self) -> bool {
+        matches!(self, Light::Directional { .. } | Light::Environment { .. })
+    }
+
+    /// A uniform environment of radiance `le` (Mitsuba's `constant`).
+    pub fn uniform_environment(le: Rgb) -> Self {
+        Light::Environment {
+            le,
+            map: None,
+            center: Vec3::ZERO,
+            radius: 1.0,
+        }
+    }
+
+    /// A directional light travelling along `dir` (normalised here) with irradiance
+    /// `irradiance`; `None` for a zero or non-finite direction.
+    pub fn directional(dir: Vec3, irradiance: Rgb) -> Option<Self> {
+        Some(Light::Directional {
+            dir: dir.try_normalize()?,
+            irradiance,
+            center: Vec3::ZERO,
+            radius: 1.0,
+        })
+    }
+
+    /// Density per steradian with which the environment's next-event estimation and emission
+    /// sample the direction `toward` (unit, pointing at the environment); 0 for other lights.
+    #[inline]
+    pub fn pdf_environment(&self, toward: Vec3) -> f32 {
+        match self {
+            Light::Environment { map: None, .. } => uniform_sphere_pdf(),
+            Light::Environment { map: Some(m), .. } => m.pdf(toward),
+            _ => 0.0,
+        }
+    }
+
+    /// Density per unit area of the emitted rays' origins on the bounding disk (lights at
+    /// infinity), or `None` for lights at finite positions.
+    #[inline]
+    pub fn disk_pdf(&self) -> Option<f32> {
+        match self {
+            Light::Directional { radius, .. } | Light::Environment { radius, .. } => {
+                Some(1.0 / (PI * radius * radius))
+            }
+            _ => None,
+        }
     }
 
     /// Emitted flux (RGB, W).
@@ -118,7 +198,21 @@ impl Light {
         match self {
             Light::Area { area, le, .. } => *le * (PI * *area),
             Light::Point { intensity, .. } => *intensity * (4.0 * PI),
-            Light::Environment { le, radius, .. } => *le * (4.0 * PI * PI * radius * radius),
+            Light::Environment {
+                le,
+                map: None,
+                radius,
+                ..
+            } => *le * (4.0 * PI * PI * radius * radius),
+            Light::Environment {
+                le,
+                map: Some(m),
+                radius,
+                ..
+            } => *le * m.integral() * (PI * radius * radius),
+            Light::Directional {
+                irradiance, radius, ..
+            } => *irradiance * (PI * radius * radius),
             Light::Spot {
                 intensity,
                 cos_inner,
@@ -193,7 +287,9 @@ impl Light {
         }
     }
 
-    /// Radiance (area) or intensity (delta) leaving the light at `p` toward unit `dir`.
+    /// Radiance (area, environment) or intensity (point, spot) leaving the light toward unit
+    /// `dir`; the directional light's irradiance. The environment's light toward `dir` comes
+    /// from the direction `-dir`.
     #[inline]
     pub fn emitted(&self, dir: Vec3) -> Rgb {
         match self {
@@ -205,7 +301,11 @@ impl Light {
                 }
             }
             Light::Point { intensity, .. } => *intensity,
-            Light::Environment { le, .. } => *le,
+            Light::Environment { le, map: None, .. } => *le,
+            Light::Environment {
+                le, map: Some(m), ..
+            } => *le * m.eval(-dir),
+            Light::Directional { irradiance, .. } => *irradiance,
             Light::Spot {
                 frame,
                 intensity,
@@ -272,7 +372,47 @@ impl Light {
                     delta: true,
                 })
             }
-            Light::Environment { le, radius, .. } => {
+            Light::Environment {
+                le,
+                map: Some(m),
+                radius,
+                ..
+            } => {
+                let (wi, pdf_w, l) = m.sample(u)?;
+                let distance = 2.0 * *radius;
+                Some(LightSample {
+                    p: p_ref + wi * distance,
+                    wi,
+                    distance,
+                    li: *le * l,
+                    pdf_w,
+                    n: None,
+                    delta: false,
+                })
+            }
+            Light::Directional {
+                dir,
+                irradiance,
+                radius,
+                ..
+            } => {
+                let distance = 2.0 * *radius;
+                Some(LightSample {
+                    p: p_ref - *dir * distance,
+                    wi: -*dir,
+                    distance,
+                    li: *irradiance,
+                    pdf_w: 1.0,
+                    n: None,
+                    delta: true,
+                })
+            }
+            Light::Environment {
+                le,
+                map: None,
+                radius,
+                ..
+            } => {
                 let wi = sample_uniform_sphere(u);
                 let distance = 2.0 * *radius;
                 Some(LightSample {
@@ -311,7 +451,7 @@ impl Light {
     }
 
     /// Density per steradian at `p_ref` with which [`Light::sample_li`] returns the point
-    /// `p_light` (area lights only; zero for delta lights).
+    /// `p_light` (area lights and the environment; zero for delta lights).
     pub fn pdf_li(&self, p_ref: Vec3, p_light: Vec3) -> f32 {
         match self {
             Light::Area { n, area, .. } => {
@@ -323,23 +463,60 @@ impl Light {
                 }
                 dist2 / (cos_l * *area)
             }
-            Light::Environment { .. } => uniform_sphere_pdf(),
+            Light::Environment { map: None, .. } => uniform_sphere_pdf(),
+            Light::Environment { .. } => self.pdf_environment((p_light - p_ref).normalize()),
             _ => 0.0,
         }
     }
 
     /// Samples an emitted ray: area lights uniformly in area and cosine-weighted in
     /// direction; point lights uniformly on the sphere; spot lights in proportion to their
-    /// falloff; the environment uniformly in direction, from the bounding disk facing it.
+    /// falloff; the environment in direction as its next-event estimation samples it, the
+    /// directional light along its direction, both from the bounding disk facing the
+    /// direction.
     pub fn sample_le(&self, u_pos: Vec2, u_dir: Vec2) -> Option<LightEmission> {
         match self {
-            Light::Environment { le, center, radius } => {
-                let dir = sample_uniform_sphere(u_dir);
-                let frame = Frame::from_z(dir);
-                let d = crate::sampling::sample_concentric_disk(u_pos) * *radius;
-                let p = *center - dir * *radius + frame.x * d.x + frame.y * d.y;
+            Light::Environment {
+                le,
+                map: Some(m),
+                center,
+                radius,
+            } => {
+                let (toward, pdf_dir, l) = m.sample(u_dir)?;
+                let dir = -toward;
                 Some(LightEmission {
-                    p,
+                    p: Self::disk_point(dir, *center, *radius, u_pos),
+                    n: None,
+                    dir,
+                    le: *le * l,
+                    pdf_pos: 1.0 / (PI * radius * radius),
+                    pdf_dir,
+                    cos_light: 1.0,
+                })
+            }
+            Light::Directional {
+                dir,
+                irradiance,
+                center,
+                radius,
+            } => Some(LightEmission {
+                p: Self::disk_point(*dir, *center, *radius, u_pos),
+                n: None,
+                dir: *dir,
+                le: *irradiance,
+                pdf_pos: 1.0 / (PI * radius * radius),
+                pdf_dir: 1.0,
+                cos_light: 1.0,
+            }),
+            Light::Environment {
+                le,
+                map: None,
+                center,
+                radius,
+            } => {
+                let dir = sample_uniform_sphere(u_dir);
+                Some(LightEmission {
+                    p: Self::disk_point(dir, *center, *radius, u_pos),
                     n: None,
                     dir,
                     le: *le,
@@ -412,11 +589,23 @@ impl Light {
         }
     }
 
-    /// Density per steradian with which [`Light::sample_le`] emits `dir` (unit, world).
+    /// A point of the disk of radius `radius` about `center` perpendicular to `dir`, on the
+    /// side `dir` leaves from: where rays from infinity along `dir` start.
+    #[inline]
+    fn disk_point(dir: Vec3, center: Vec3, radius: f32, u: Vec2) -> Vec3 {
+        let frame = Frame::from_z(dir);
+        let d = crate::sampling::sample_concentric_disk(u) * radius;
+        center - dir * radius + frame.x * d.x + frame.y * d.y
+    }
+
+    /// Density per steradian with which [`Light::sample_le`] emits `dir` (unit, world); 0 for
+    /// the directional light (a delta in direction).
     pub fn pdf_le_dir(&self, dir: Vec3) -> f32 {
         match self {
             Light::Area { n, .. } => cosine_hemisphere_pdf(dir.dot(*n)),
-            Light::Point { .. } | Light::Environment { .. } => uniform_sphere_pdf(),
+            Light::Point { .. } => uniform_sphere_pdf(),
+            Light::Environment { .. } => self.pdf_environment(-dir),
+            Light::Directional { .. } => 0.0,
             Light::Spot {
                 frame,
                 cos_inner,

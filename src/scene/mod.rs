@@ -8,6 +8,7 @@ pub mod bvh;
 pub mod camera;
 pub mod effects;
 pub mod embree;
+pub mod envmap;
 pub mod features;
 pub mod geometry;
 pub mod light;
@@ -194,7 +195,7 @@ impl Scene {
                         *position -= origin
                     }
                     Light::Area { geom, .. } => geom.p0 -= origin,
-                    Light::Environment { .. } => {}
+                    Light::Directional { .. } | Light::Environment { .. } => {}
                 }
             }
         }
@@ -222,7 +223,7 @@ impl Scene {
                 .iter()
                 .flat_map(|t| [t.p0, t.p0 + t.e1, t.p0 + t.e2]),
         );
-        // The environment surrounds the scene's bounding sphere (camera included).
+        // The lights at infinity surround the scene's bounding sphere (camera included).
         let (blo, bhi) = (lo.min(camera.position), hi.max(camera.position));
         let (center, radius) = (
             0.5 * (blo + bhi),
@@ -230,6 +231,11 @@ impl Scene {
         );
         for l in &mut lights {
             if let Light::Environment {
+                center: c,
+                radius: r,
+                ..
+            }
+            | Light::Directional {
                 center: c,
                 radius: r,
                 ..

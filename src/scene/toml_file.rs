@@ -118,6 +118,22 @@ enum LightDesc {
         inner_angle: f32,
         outer_angle: f32,
     },
+    /// Parallel light travelling along `direction` (Mitsuba's `directional`).
+    Directional {
+        direction: [f32; 3],
+        irradiance: [f32; 3],
+    },
+    /// A latitude-longitude environment map, relative to the scene file (Mitsuba's `envmap`,
+    /// without rotation).
+    Envmap {
+        file: String,
+        #[serde(default = "default_scale")]
+        scale: f32,
+    },
+}
+
+fn default_scale() -> f32 {
+    1.0
 }
 
 /// Line and column (1-based) of byte `offset` in `text`.
@@ -288,6 +304,26 @@ fn build_scene(path: &Path, text: &str, dir: &Path, file: SceneFile) -> Result<S
                     cos_inner: inner_angle.to_radians().cos(),
                     cos_outer: outer_angle.to_radians().cos(),
                     profile: crate::scene::light::SpotProfile::Smoothstep,
+                }
+            }
+            LightDesc::Directional { direction, irradiance } => {
+                let dir = finite3(path, &format!("{field}.direction"), *direction)?;
+                let irradiance = non_negative3(path, &format!("{field}.irradiance"), *irradiance)?;
+                Light::directional(dir, irradiance)
+                    .ok_or_else(|| Error::invalid(path, format!("{field}: directional light's direction is zero")))?
+            }
+            LightDesc::Envmap { file, scale } => {
+                if !(*scale >= 0.0 && scale.is_finite()) {
+                    return Err(Error::invalid(path, format!("{field}.scale must be finite and not negative")));
+                }
+                let map_path = path.parent().unwrap_or(Path::new(".")).join(file);
+                let map = crate::scene::envmap::EnvMap::load(&map_path, Mat3::IDENTITY)
+                    .map_err(|e| Error::invalid(path, format!("{field}.file '{}': {e}", map_path.display())))?;
+                Light::Environment {
+                    le: Rgb::splat(*scale),
+                    map: Some(std::sync::Arc::new(map)),
+                    center: Vec3::ZERO,
+                    radius: 1.0,
                 }
             }
         });

@@ -32,7 +32,7 @@
 //!   with their share of the pixel, not their second moment). On door this brings
 //!   `pt-bsdf`'s prediction near its rendered error (docs/measurements/door-desk.md).
 //! * **Missing light.** A method that cannot make some paths is biased there: path tracing
-//!   misses caustics of point and spot lights (`L S+ D ... E`: a delta light behind a specular
+//!   misses caustics of point, spot and directional lights (`L S+ D ... E`: a delta light behind a specular
 //!   surface), light tracing misses what the pinhole sees through a specular surface and the
 //!   environment seen directly. Where the scene's effects allow that, the candidate's squared
 //!   difference to the combined mean (less what its noise explains) is added as `b²_m`,

@@ -50,8 +50,8 @@ pub(super) fn can_miss_light(scene: &Scene, integrator: &str) -> Option<&'static
     let e = &scene.effects;
     let specular = e.specular_reflection || e.refraction;
     match integrator {
-        "pt" if specular && (e.spot_lights || e.point_lights) => {
-            Some("path tracing cannot find caustics of point and spot lights")
+        "pt" if specular && (e.spot_lights || e.point_lights || e.directional_lights) => {
+            Some("path tracing cannot find caustics of point, spot and directional lights")
         }
         "lt" if specular => Some("light tracing cannot see through specular surfaces"),
         "lt" if e.environment => Some("light tracing does not see the environment directly"),

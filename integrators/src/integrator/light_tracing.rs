@@ -19,7 +19,11 @@
 //! combined image's share, weighted against path tracing by [`crate::mis::LightMis`].
 //! Paths from the environment stay out of it: the path tracer alone makes them there (its
 //! own two-strategy weights sum to one for them), so that the weights remain a partition
-//! of unity without an area density at infinity.
+//! of unity without an area density at infinity. Paths from the directional light are in it,
+//! weighted against next-event estimation (the only other strategy that makes them).
+//!
+//! The first vertex of a path from a light at infinity lies on the scene's bounding disk,
+//! which no camera sees: it is not connected.
 //!
 //! Path length: `max_depth` counts segments, the camera connection included: a connection
 //! from the `n`-th hit closes a path of `n + 1` segments.
@@ -195,8 +199,9 @@ pub fn trace<'a, F: Features, W: LightShare>(
     let mut share = share.filter(|_| !light.is_environment());
     let weights = weights(li as u32, em.p, em.n);
 
-    // ---- The light vertex seen directly by the camera (not the environment's disk) ----
-    if let Some(conn) = cam.connect(em.p).filter(|_| !light.is_environment()) {
+    // ---- The light vertex seen directly by the camera (not a bounding disk of a light at
+    // infinity) ----
+    if let Some(conn) = cam.connect(em.p).filter(|_| !light.is_infinite()) {
         let cos_l = em.n.map(|n| n.dot(conn.dir_to_camera)).unwrap_or(1.0);
         if cos_l > 0.0 {
             let le = light.emitted(conn.dir_to_camera);

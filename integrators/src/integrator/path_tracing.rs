@@ -6,8 +6,9 @@
 //! evaluated at the light sample's direction). Delta lights are reached by next-event
 //! estimation alone; specular vertices pass emission through unweighted.
 //!
-//! A uniform environment (Mitsuba's `constant`) is seen by rays that escape, weighted by MIS
-//! against its next-event samples.
+//! An environment (Mitsuba's `constant` or `envmap`) is seen by rays that escape, weighted by
+//! MIS against its next-event samples. The directional light, a delta, is reached by
+//! next-event estimation alone, as point lights.
 //!
 //! A camera path can also feed a second estimate with other weights ([`CameraShare`]): the
 //! combined image's share, weighted against light tracing by [`crate::mis::CameraMis`].
@@ -252,11 +253,13 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
         let Some((ei, env)) = self.scene.environment() else {
             return;
         };
-        let le = env.emitted(dir);
+        // The environment's light along `dir` arrives from `-dir`'s far end: it leaves the
+        // environment toward `-dir`.
+        let le = env.emitted(-dir);
         let w = if from.delta {
             1.0
         } else {
-            let pdf_light = self.scene.light_pmf(ei) * env.pdf_li(from.prev_p, from.prev_p + dir);
+            let pdf_light = self.scene.light_pmf(ei) * env.pdf_environment(dir);
             power_heuristic(from.pdf_w, pdf_light)
         };
         self.out.pt += beta * le * w;
@@ -321,7 +324,7 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
         let (f, bsdf_pdf) =
             v.bsdf
                 .eval_and_lambert_pdf_with::<F>(v.wo, ls.wi, TransportMode::Radiance);
-        // Point and spot lights are the only delta lights.
+        // Point, spot and directional lights are the delta lights.
         let delta = F::DELTA_LIGHTS && ls.delta;
         if f.max_element() <= 0.0 {
             return;

@@ -3,7 +3,9 @@
 //! * the **light pass** emits photons from the lights in proportion to power (area lights
 //!   uniformly in area and cosine-weighted in direction, or guided by an importance map,
 //!   [`crate::emit`]; spot lights in their cone in proportion to the falloff, point lights
-//!   uniformly) and traces them in importance mode; each carries flux `Φ_p`;
+//!   uniformly; the directional light and the environment from the scene's bounding disk,
+//!   along the light's direction or the environment's sampled one) and traces them in
+//!   importance mode; each carries flux `Φ_p`;
 //! * the **view pass** shoots importons from the camera through the image, uniformly in
 //!   raster position, which distributes them like the camera's importance `W_e` (the first
 //!   segment's weight `W_e cos θ / pdf` is exactly 1 for a pinhole), and traces them in

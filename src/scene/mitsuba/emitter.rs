@@ -1,15 +1,17 @@
-//! The `<emitter>` element outside shapes: `point`, `spot` and `constant` (the environment);
-//! an `area` emitter belongs to a shape (`shape.rs`).
+//! The `<emitter>` element outside shapes: `point`, `spot`, `directional`, and the
+//! environments `constant` and `envmap`; an `area` emitter belongs to a shape (`shape.rs`).
 
 use super::builder::Builder;
 use super::xml::Props;
 use crate::Rgb;
 use crate::error::Result;
+use crate::scene::envmap::EnvMap;
 use crate::scene::light::Light;
-use glam::{Mat4, Vec3};
+use glam::{Mat3, Mat4, Vec3};
 use roxmltree::Node;
+use std::sync::Arc;
 
-const EMITTERS: &str = "area (on a shape), point, spot, constant";
+const EMITTERS: &str = "area (on a shape), point, spot, directional, constant, envmap";
 
 impl<'a, 'd> Builder<'a, 'd> {
     /// An emitter's colour property (`radiance` or `intensity`, default 1), which must not be
@@ -23,6 +25,22 @@ impl<'a, 'd> Builder<'a, 'd> {
             ));
         }
         Ok(c)
+    }
+
+    /// [`Builder::emission`] of an emitter of type `kind` that takes no texture for it.
+    fn untextured_emission(
+        &self,
+        node: Node,
+        p: &Props<'a, 'd>,
+        name: &str,
+        kind: &str,
+    ) -> Result<Rgb> {
+        if p.is_texture(name) {
+            return Err(self
+                .doc
+                .err(node, format!("a textured {kind} {name} is not supported")));
+        }
+        self.emission(p, name)
     }
 
     pub(super) fn emitter(&mut self, node: Node<'a, 'a>) -> Result<()> {
@@ -71,15 +89,52 @@ impl<'a, 'd> Builder<'a, 'd> {
                 ));
             }
             "constant" => {
-                if p.is_texture("radiance") {
-                    return Err(self
-                        .doc
-                        .err(node, "a textured constant radiance is not supported"));
-                }
-                let le = self.emission(&p, "radiance")?;
+                let le = self.untextured_emission(node, &p, "radiance", "constant")?;
                 p.finish("emitter 'constant'")?;
+                self.lights.push(Light::uniform_environment(le));
+            }
+            "directional" => {
+                let irradiance = self.untextured_emission(node, &p, "irradiance", "directional")?;
+                let dir = match (p.vec3("direction")?, p.transform("to_world")?) {
+                    (Some(_), Some(_)) => {
+                        return Err(self.doc.err(
+                            node,
+                            "directional: give 'direction' or 'to_world', not both",
+                        ));
+                    }
+                    (Some(d), None) => d,
+                    (None, m) => m.unwrap_or(Mat4::IDENTITY).transform_vector3(Vec3::Z),
+                };
+                p.finish("emitter 'directional'")?;
+                let light = Light::directional(dir, irradiance).ok_or_else(|| {
+                    self.doc
+                        .err(node, "directional: the direction is zero or not finite")
+                })?;
+                self.lights.push(light);
+            }
+            "envmap" => {
+                let file = p
+                    .string("filename")?
+                    .ok_or_else(|| self.doc.err(node, "envmap needs 'filename'"))?;
+                let scale = p.float_or("scale", 1.0)?;
+                if !(scale >= 0.0 && scale.is_finite()) {
+                    return Err(self.doc.err(
+                        p.get("scale").expect("the property was read"),
+                        "envmap: scale must be finite and not negative",
+                    ));
+                }
+                let m = p.transform("to_world")?.unwrap_or(Mat4::IDENTITY);
+                // Changes how Mitsuba samples the map, not the image.
+                p.boolean("mis_compensation")?;
+                p.finish("emitter 'envmap'")?;
+                let path = self.doc.file(&file);
+                let map = EnvMap::load(&path, Mat3::from_mat4(m)).map_err(|e| {
+                    self.doc
+                        .err(node, format!("envmap '{}': {e}", path.display()))
+                })?;
                 self.lights.push(Light::Environment {
-                    le,
+                    le: Rgb::splat(scale),
+                    map: Some(Arc::new(map)),
                     center: Vec3::ZERO,
                     radius: 1.0,
                 });

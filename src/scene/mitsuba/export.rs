@@ -174,11 +174,47 @@ pub fn export(scene: &Scene, source: &Path, out: &Path) -> Result<ExportNotes> {
     for l in &scene.lights {
         match l {
             Light::Area { .. } => {}
-            Light::Environment { le, .. } => {
+            Light::Environment { le, map: None, .. } => {
                 let _ = writeln!(
                     x,
                     "  <emitter type=\"constant\">{}</emitter>",
                     rgb("radiance", *le)
+                );
+            }
+            Light::Environment {
+                le, map: Some(m), ..
+            } => {
+                // Mitsuba's `scale` is one number: a coloured `le` goes into the texels.
+                let grey = le.x == le.y && le.y == le.z;
+                let (scale, tint) = if grey { (le.x, Rgb::ONE) } else { (1.0, *le) };
+                let file = "meshes/envmap.exr";
+                let path = out.join(file);
+                let (w, h) = m.size();
+                exr::prelude::write_rgb_file(&path, w, h, |i, j| {
+                    let t = m.texel(i, j) * tint;
+                    (t.x, t.y, t.z)
+                })
+                .map_err(|e| Error::Write {
+                    path: path.clone(),
+                    message: e.to_string(),
+                })?;
+                let r = m.to_world();
+                let _ = writeln!(
+                    x,
+                    "  <emitter type=\"envmap\"><string name=\"filename\" value=\"{file}\"/><float name=\"scale\" value=\"{scale:?}\"/>\n    <transform name=\"to_world\"><matrix value=\"{} 0 {} 0 {} 0 0 0 0 1\"/></transform>\n  </emitter>",
+                    v3(r.row(0)).replace(',', ""),
+                    v3(r.row(1)).replace(',', ""),
+                    v3(r.row(2)).replace(',', "")
+                );
+            }
+            Light::Directional {
+                dir, irradiance, ..
+            } => {
+                let _ = writeln!(
+                    x,
+                    "  <emitter type=\"directional\"><vector name=\"direction\" value=\"{}\"/>{}</emitter>",
+                    v3(*dir),
+                    rgb("irradiance", *irradiance)
                 );
             }
             Light::Point {

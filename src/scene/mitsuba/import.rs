@@ -130,7 +130,7 @@ fn load_with(path: &Path, opts: &ImportOptions, prefetch: bool) -> Result<Scene>
         && b.lights.iter().any(|l| l.is_environment())
     {
         doc.notes.borrow_mut().push(format!(
-            "{}: ptracer with a constant emitter: footprint's light tracer does not see the environment directly (the background stays black); --integrator pt or combined show it",
+            "{}: ptracer with an environment (constant or envmap): footprint's light tracer does not see the environment directly (the background stays black); --integrator pt or combined show it",
             path.display()
         ));
     }
