@@ -2,11 +2,13 @@
 //! gives, energy conservation (albedo at most 1), reciprocity in radiance mode, and the smooth
 //! dielectric's Fresnel split, Snell's law and transport-mode scaling.
 //!
-//! The Mitsuba 3 kinds (conductor, rough conductor, plastic, rough plastic, thin dielectric)
-//! join the same tests, and more: their values against Mitsuba 3's own (`matches_mitsuba_3`,
-//! constants printed by scripts/mitsuba_bsdf_values.py), random configurations down to
-//! grazing and α = 1e-3, the white furnace, the thin sheet's R + T = 1, the conductor Fresnel
-//! term, one-sidedness, and which kinds are delta and guide.
+//! The Mitsuba 3 kinds (conductor, rough conductor, plastic, rough plastic, thin dielectric,
+//! rough dielectric) join the same tests, and more: their values against Mitsuba 3's own
+//! (`matches_mitsuba_3`, constants printed by scripts/mitsuba_bsdf_values.py), random
+//! configurations down to grazing and α = 1e-3, the white furnace, the thin sheet's
+//! R + T = 1, the conductor Fresnel term, one-sidedness, and which kinds are delta and
+//! guide; the rough dielectric's adjoint and generalised reciprocity across the interface,
+//! and its furnace against a quadrature (`bsdf/rough_dielectric.rs`).
 //!
 //! The parts live in `tests/bsdf/`; this root holds what they share.
 
@@ -20,6 +22,8 @@ mod energy;
 mod mitsuba;
 #[path = "bsdf/reciprocity.rs"]
 mod reciprocity;
+#[path = "bsdf/rough_dielectric.rs"]
+mod rough_dielectric;
 #[path = "bsdf/sampling.rs"]
 mod sampling;
 #[path = "bsdf/specular.rs"]

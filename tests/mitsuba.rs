@@ -364,6 +364,24 @@ fn glass_balls_combined_image_matches_mitsuba() {
     check_seeded(&GLASS, "combined-bsdf", FilmMode::Splat, 7100);
 }
 
+/// Rough glass balls (`roughdielectric`: GGX α 0.3 with named indices, Beckmann α 0.1 with
+/// coloured factors) on the glass room's glossy floor: reflection and refraction on both
+/// sides of the interface, next-event estimation through it.
+const ROUGH_GLASS: Case = Case {
+    name: "roughglass",
+    res: (48, 48),
+    rfilter: "box",
+    max_depth: 4,
+    replicates: 16,
+    spp: 32,
+    sheets_connect: false,
+};
+
+#[test]
+fn rough_glass_balls_match_mitsuba() {
+    check(&ROUGH_GLASS, "pt-bsdf", FilmMode::Splat);
+}
+
 /// Filter importance sampling (one sample, one pixel) agrees too.
 #[test]
 fn cornell_with_filter_importance_sampling_matches_mitsuba() {

@@ -6,6 +6,7 @@ use crate::bsdf::blinn::{blinn_eval, blinn_pdf};
 use crate::bsdf::fresnel::{fresnel_conductor, fresnel_dielectric, fresnel_diffuse_reflectance};
 use crate::bsdf::material::{Material, MaterialKind};
 use crate::bsdf::microfacet::MicrofacetDistribution;
+use crate::bsdf::rough_glass::RoughGlass;
 use crate::bsdf::rough_plastic::RoughPlasticTables;
 use crate::math::{INV_PI, Rgb, luminance};
 use crate::sampling::cosine_hemisphere_pdf;
@@ -60,6 +61,8 @@ pub enum Lobes {
         distr: MicrofacetDistribution,
         tables: &'static RoughPlasticTables,
     },
+    /// Rough dielectric interface (microfacet reflection and refraction, both sides).
+    RoughGlass(RoughGlass),
     /// Thin dielectric sheet of IOR `eta`: reflectance factor `ks`, transmittance `tf`.
     ThinGlass {
         eta: f32,
@@ -187,6 +190,13 @@ impl Lobes {
                 ks,
                 tf: material.tf,
             },
+            MaterialKind::RoughGlass => Lobes::RoughGlass(RoughGlass {
+                eta: material.ni,
+                ks,
+                // `tf` is per passage in and out, two crossings.
+                kt: material.tf.map(f32::sqrt),
+                distr: MicrofacetDistribution::new(material.microfacet, material.alpha),
+            }),
         };
         SurfaceLobes {
             lobes,
@@ -220,6 +230,7 @@ impl Lobes {
                 diffuse + ks
             }
             Lobes::ThinGlass { tf, .. } => tf,
+            Lobes::RoughGlass(g) => g.kt,
         }
     }
 
@@ -234,15 +245,20 @@ impl Lobes {
                 | Lobes::RoughPlastic { .. }
                 | Lobes::ThinGlass { .. }
                 | Lobes::Glass { .. }
+                | Lobes::RoughGlass(_)
         )
     }
 
     /// True for the kinds that scatter through the surface (they ignore sidedness).
     pub(super) fn transmits(&self) -> bool {
-        matches!(self, Lobes::Glass { .. } | Lobes::ThinGlass { .. })
+        matches!(
+            self,
+            Lobes::Glass { .. } | Lobes::ThinGlass { .. } | Lobes::RoughGlass(_)
+        )
     }
 
-    /// Non-delta part of `f` in the local frame, both directions above the surface.
+    /// Non-delta part of `f` in the local frame, both directions above the surface (the
+    /// rough dielectric, which scatters to both sides, is evaluated by the surface itself).
     pub(super) fn eval_local(&self, lo: Vec3, li: Vec3) -> Rgb {
         match *self {
             Lobes::Diffuse { kd } => kd * INV_PI,
@@ -280,7 +296,8 @@ impl Lobes {
             Lobes::Mirror { .. }
             | Lobes::Glass { .. }
             | Lobes::Conductor { .. }
-            | Lobes::ThinGlass { .. } => Rgb::ZERO,
+            | Lobes::ThinGlass { .. }
+            | Lobes::RoughGlass(_) => Rgb::ZERO,
         }
     }
 
@@ -319,7 +336,8 @@ impl Lobes {
             Lobes::Mirror { .. }
             | Lobes::Glass { .. }
             | Lobes::Conductor { .. }
-            | Lobes::ThinGlass { .. } => 0.0,
+            | Lobes::ThinGlass { .. }
+            | Lobes::RoughGlass(_) => 0.0,
         }
     }
 }

@@ -9,8 +9,8 @@
 //! | `Ke` | emission: the faces become area lights of radiance `Ke` |
 //!
 //! Mitsuba 3 scenes (`crate::scene::mitsuba`) add the kinds Mitsuba's BSDFs need: smooth and rough
-//! conductors with a complex index of refraction, smooth and rough plastic, and the thin
-//! dielectric sheet; the mapping is tabled in `docs/mitsuba.md`.
+//! conductors with a complex index of refraction, smooth and rough plastic, the rough
+//! dielectric and the thin dielectric sheet; the mapping is tabled in `docs/mitsuba.md`.
 
 use crate::Rgb;
 use crate::bsdf::microfacet::Microfacet;
@@ -39,6 +39,10 @@ pub enum MaterialKind {
     /// Microfacet dielectric coating (`microfacet`, `alpha`, IOR `ni`, reflectance `ks`) over
     /// a Lambertian base `kd` (Mitsuba `roughplastic`).
     RoughPlastic,
+    /// Rough dielectric interface of IOR `ni` (Mitsuba `roughdielectric`): microfacet
+    /// reflection (factor `ks`) and refraction (factor `sqrt(tf)` per crossing, so `tf` per
+    /// passage in and out, as for `Glass`) with distribution `microfacet` of roughness `alpha`.
+    RoughGlass,
     /// Thin dielectric sheet of IOR `ni` (Mitsuba `thindielectric`): reflection and straight
     /// transmission with the multiple internal reflections summed.
     ThinGlass,
@@ -68,22 +72,24 @@ pub struct Material {
     /// Index into the scene's textures modulating `kd`.
     pub kd_texture: Option<u32>,
     /// Glossy reflectance (Glossy), mirror reflectance (Mirror), or the specular
-    /// reflectance factor (Conductor, RoughConductor, Plastic, RoughPlastic, ThinGlass).
+    /// reflectance factor (Conductor, RoughConductor, Plastic, RoughPlastic, ThinGlass,
+    /// RoughGlass).
     pub ks: Rgb,
     /// Index into the scene's textures modulating `ks`.
     pub ks_texture: Option<u32>,
     /// Blinn exponent (Glossy).
     pub ns: f32,
-    /// Transmittance of one passage through the object (Glass).
+    /// Transmittance of one passage through the object (Glass, RoughGlass: two crossings of
+    /// the interface), of the sheet (ThinGlass).
     pub tf: Rgb,
-    /// Relative index of refraction, interior over exterior (Glass, Plastic, RoughPlastic,
-    /// ThinGlass).
+    /// Relative index of refraction, interior over exterior (Glass, RoughGlass, Plastic,
+    /// RoughPlastic, ThinGlass).
     pub ni: f32,
     /// Real part of a conductor's relative complex IOR, per channel.
     pub eta: Rgb,
     /// Imaginary part (absorption) of a conductor's relative complex IOR, per channel.
     pub k: Rgb,
-    /// Microfacet roughness α (RoughConductor, RoughPlastic).
+    /// Microfacet roughness α (RoughConductor, RoughPlastic, RoughGlass).
     pub alpha: f32,
     pub microfacet: Microfacet,
     /// False: the surface scatters only on the side its shading normal faces and is black

@@ -169,8 +169,11 @@ impl MicrofacetDistribution {
             Microfacet::Beckmann => {
                 // Stretch to α = 1, sample the visible slopes for the stretched elevation with
                 // the incident azimuth along +x, rotate back and unstretch.
+                // The sine from the tangential components, not from 1 - cos²: at small α the
+                // stretched direction is within a few 1e-3 of the normal, where 1 - cos² in
+                // f32 keeps about two digits (a percent off the slopes' scale and azimuth).
                 let ws = Vec3::new(a * wi.x, a * wi.y, wi.z).normalize();
-                let sin_t = safe_sqrt(1.0 - ws.z * ws.z);
+                let sin_t = (ws.x * ws.x + ws.y * ws.y).sqrt();
                 let (cos_phi, sin_phi) = if sin_t > 0.0 {
                     (
                         (ws.x / sin_t).clamp(-1.0, 1.0),
@@ -179,7 +182,7 @@ impl MicrofacetDistribution {
                 } else {
                     (1.0, 0.0)
                 };
-                let (sx, sy) = beckmann_visible_slopes(ws.z as f64, u);
+                let (sx, sy) = beckmann_visible_slopes(sin_t as f64, ws.z as f64, u);
                 let (sx, sy) = (sx as f32, sy as f32);
                 let mx = (cos_phi * sx - sin_phi * sy) * a;
                 let my = (sin_phi * sx + cos_phi * sy) * a;
@@ -275,14 +278,14 @@ pub fn gauss_legendre_01(n: usize) -> Vec<(f64, f64)> {
 const INV_SQRT_PI: f64 = 0.564_189_583_547_756_3;
 
 /// Slopes `(x, y)` of a visible normal of the α = 1 Beckmann distribution seen from
-/// elevation `cos_i`, incident azimuth along +x. The x slope has the unnormalised CDF
-/// `1 + erf(s) + tanθ/√π exp(-s²)` on `s < cot θ`, inverted by safeguarded Newton steps in
-/// `x = erf(s)`; the y slope is an independent normal of variance 1/2.
-fn beckmann_visible_slopes(cos_i: f64, u: Vec2) -> (f64, f64) {
+/// elevation `(sin_i, cos_i)`, incident azimuth along +x. The x slope has the unnormalised
+/// CDF `1 + erf(s) + tanθ/√π exp(-s²)` on `s < cot θ`, inverted by safeguarded Newton steps
+/// in `x = erf(s)`; the y slope is an independent normal of variance 1/2.
+fn beckmann_visible_slopes(sin_i: f64, cos_i: f64, u: Vec2) -> (f64, f64) {
     let ux = (u.x as f64).clamp(1e-9, 1.0 - 1e-9);
     let uy = (u.y as f64).clamp(1e-9, 1.0 - 1e-9);
     let cos_i = cos_i.clamp(1e-7, 1.0);
-    let tan_i = (1.0 - cos_i * cos_i).max(0.0).sqrt() / cos_i;
+    let tan_i = sin_i.max(0.0) / cos_i;
     let cot_i = if tan_i > 0.0 {
         1.0 / tan_i
     } else {

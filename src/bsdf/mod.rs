@@ -33,14 +33,22 @@
 //!   cos)`, plus the base `k_d' t(cos θ_o) t(cos θ_i) / (π η²)`, `t` the coating's tabled
 //!   transmittance and `k_d'` divided by its tabled internal reflectance
 //!   ([`crate::bsdf::rough_plastic`]); lobe probabilities as plastic with `1 - t` for `F`;
+//! * `roughdielectric`: microfacet reflection `k_s F(wo·h) D G / (4 |cos θ_o| |cos θ_i|)`
+//!   and refraction `T |(wo·m)(wi·m)| (1 - F) D G / (|cos θ_o| |cos θ_i| (wo·m + η wi·m)²)`
+//!   in radiance mode, times `η²` in importance mode (`m ∝ wo + η wi`, `η` the relative
+//!   index of the crossing, `T` the constant transmittance of one crossing; Walter et al.
+//!   2007, eqs. 20-21), sampled by visible normals with reflection chosen with probability
+//!   `F` ([`crate::bsdf::rough_glass`]); entering or leaving read from `cos θ_o` in the
+//!   shading frame, as smooth glass;
 //! * `thindielectric`: reflection `R' = 2R/(1 + R)` (the sheet's inner reflections summed),
 //!   straight transmission `1 - R'` (`wi = -wo`), with `k_s` and `T_f` as factors and no
 //!   `1/η²` (the ray leaves into the medium it came from).
 //!
 //! Sidedness: two-sided surfaces reflect on whichever side of the shading normal `wo` is (the
-//! frame is flipped to it, as Mitsuba's `twosided` flips where `cos θ_i < 0`); a one-sided surface (Mitsuba's BSDFs unless wrapped in `twosided`) is black unless
-//! both directions are above the shading normal, as Mitsuba evaluates it. Glass and thin
-//! glass scatter on both sides regardless. The front is the side the shading normal faces,
+//! frame is flipped to it, as Mitsuba's `twosided` flips where `cos θ_i < 0`); a one-sided
+//! surface (Mitsuba's BSDFs unless wrapped in `twosided`) is black unless both directions are
+//! above the shading normal, as Mitsuba evaluates it. Glass, rough glass and thin glass
+//! scatter on both sides regardless. The front is the side the shading normal faces,
 //! also where a mesh is wound against its vertex normals (`SurfaceHit::facing_ng`). Glass
 //! reads wo's side in the shading frame, as Mitsuba's `dielectric` (`cos θ_i`): near a smooth
 //! mesh's silhouette, where wo is above the geometric normal and below the shading normal,
@@ -62,6 +70,7 @@ pub mod fresnel;
 mod lobes;
 pub mod material;
 pub mod microfacet;
+pub mod rough_glass;
 pub mod rough_plastic;
 mod surface;
 

@@ -188,6 +188,10 @@ impl Bsdf {
         if self.is_delta_with::<F>() {
             return Rgb::ZERO;
         }
+        if let Lobes::RoughGlass(g) = &self.lobes {
+            let (lo, li) = (self.frame.to_local(wo), self.frame.to_local(wi));
+            return g.eval(lo, li, mode) * self.adjoint_correction_with::<F>(wo, wi, mode);
+        }
         let f = match self.reflection_local(wo, wi) {
             Some((lo, li)) => self.lobes.eval_local(lo, li),
             None => return Rgb::ZERO,
@@ -240,6 +244,9 @@ impl Bsdf {
         }
         if self.is_delta_with::<F>() {
             return 0.0;
+        }
+        if let Lobes::RoughGlass(g) = &self.lobes {
+            return g.pdf(self.frame.to_local(wo), self.frame.to_local(wi));
         }
         match self.reflection_local(wo, wi) {
             Some((lo, li)) => self.lobes.pdf_local(lo, li),
@@ -367,6 +374,12 @@ impl Bsdf {
         u: Vec2,
         mode: TransportMode,
     ) -> Option<BsdfSample> {
+        if let Lobes::RoughGlass(g) = &self.lobes {
+            // Both sides in the shading frame, as Mitsuba's `roughdielectric` (its cos θ_i):
+            // no flip, and the direction stands on either side of the geometric normal.
+            let li = g.sample(self.frame.to_local(wo), u_lobe, u)?;
+            return self.non_delta_sample(wo, self.frame.to_world(li), mode);
+        }
         // The frame is flipped to wo's side for the transmitting kinds and for two-sided
         // reflection; a one-sided surface seen from below scatters nothing.
         let side = if let Lobes::Glass { .. } = self.lobes {
@@ -445,17 +458,28 @@ impl Bsdf {
             Lobes::Glass { eta, tf_sqrt } => {
                 return self.sample_glass(wo, lo, side, eta, tf_sqrt, u_lobe, mode);
             }
+            Lobes::RoughGlass(_) => unreachable!("sampled above"),
         };
         if li.z <= 0.0 {
             return None;
         }
         let wi = self.frame.to_world(Vec3::new(li.x, li.y, li.z * side));
+        self.non_delta_sample(wo, wi, mode)
+    }
+
+    /// The sample of a non-delta lobe in direction `wi`: `f` and the density from `eval` and
+    /// `pdf` (so that the three agree exactly); `None` where either is not positive.
+    #[inline]
+    fn non_delta_sample(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Option<BsdfSample> {
         let pdf_w = self.pdf(wo, wi);
         let f = self.eval(wo, wi, mode);
         if pdf_w <= 0.0 || !pdf_w.is_finite() || f.max_element() <= 0.0 {
             return None;
         }
         let weight = f * (wi.dot(self.frame.z).abs() / pdf_w);
+        if !weight.is_finite() {
+            return None;
+        }
         Some(BsdfSample {
             wi,
             f,

@@ -35,8 +35,8 @@ use glam::Vec3;
 pub const LUMINANCE: Rgb = Rgb::new(0.2126, 0.7152, 0.0722);
 
 /// True when particles are stored and guide at surfaces with these lobes: diffuse, and
-/// glossy up to the soft-glossy exponent (the rough conductor and rough plastic by the
-/// Blinn exponent of about the same width); never mirrors, glass, smooth conductors or
+/// glossy up to the soft-glossy exponent (the rough conductor, rough plastic and rough
+/// dielectric by the Blinn exponent of about the same width); never mirrors, glass, smooth conductors or
 /// plastics, thin glass or strongly glossy lobes (paper §3).
 pub fn guides_at(lobes: &Lobes, soft_glossy_max: f32) -> bool {
     match lobes {
@@ -46,6 +46,7 @@ pub fn guides_at(lobes: &Lobes, soft_glossy_max: f32) -> bool {
         Lobes::RoughConductor { distr, .. } | Lobes::RoughPlastic { distr, .. } => {
             distr.blinn_exponent() <= soft_glossy_max
         }
+        Lobes::RoughGlass(g) => g.distr.blinn_exponent() <= soft_glossy_max,
         // Smooth plastic has a delta coat over its diffuse base.
         Lobes::Mirror { .. }
         | Lobes::Glass { .. }

@@ -11,6 +11,7 @@ pub struct Effects {
     pub diffuse: bool,
     pub glossy: bool,
     pub specular_reflection: bool,
+    /// Delta refraction (smooth and thin glass); the rough dielectric's is glossy.
     pub refraction: bool,
     /// Thin dielectric sheets (Mitsuba `thindielectric`): connections pass through them
     /// with their transmittance ([`crate::scene::Scene::transmittance`]).
@@ -68,6 +69,12 @@ impl Effects {
                 MaterialKind::RoughPlastic => {
                     e.diffuse |= m.kd.max_element() > 0.0;
                     e.glossy |= m.ks.max_element() > 0.0;
+                }
+                // Glossy reflection and glossy refraction: no delta lobe.
+                MaterialKind::RoughGlass => {
+                    e.glossy |= m.ks.max_element() > 0.0 || m.tf.max_element() > 0.0;
+                    let t = m.tf;
+                    e.coloured_filtering |= t.max_element() - t.min_element() > 1e-4;
                 }
                 MaterialKind::ThinGlass => {
                     e.specular_reflection = true;

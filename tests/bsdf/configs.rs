@@ -15,6 +15,8 @@ pub struct Config {
     pub mode: TransportMode,
     /// Cap around the mirror direction for narrow lobes, or the whole sphere.
     pub cap: Option<f64>,
+    /// The cap's axis when it is not the mirror direction.
+    pub axis: Option<Vec3>,
 }
 
 pub fn configs() -> Vec<Config> {
@@ -34,6 +36,7 @@ pub fn configs() -> Vec<Config> {
             wo,
             mode: TransportMode::Radiance,
             cap: None,
+            axis: None,
         });
     }
     v.push(Config {
@@ -44,6 +47,7 @@ pub fn configs() -> Vec<Config> {
         wo: -dir(30.0, 10.0),
         mode: TransportMode::Radiance,
         cap: None,
+        axis: None,
     });
     for n in [1.0, 10.0, 100.0] {
         for (i, wo) in [dir(10.0, 0.0), dir(60.0, 45.0), dir(88.0, 100.0)]
@@ -56,6 +60,7 @@ pub fn configs() -> Vec<Config> {
                 wo,
                 mode: TransportMode::Radiance,
                 cap: None,
+                axis: None,
             });
         }
     }
@@ -68,6 +73,7 @@ pub fn configs() -> Vec<Config> {
                 wo,
                 mode: TransportMode::Radiance,
                 cap: Some(cap),
+                axis: None,
             });
         }
     }
@@ -77,6 +83,7 @@ pub fn configs() -> Vec<Config> {
         wo: dir(40.0, 250.0),
         mode: TransportMode::Importance,
         cap: None,
+        axis: None,
     });
     v.push(Config {
         name: "diffuse tilted normal, radiance".into(),
@@ -86,6 +93,7 @@ pub fn configs() -> Vec<Config> {
         wo: dir(70.0, 90.0),
         mode: TransportMode::Radiance,
         cap: None,
+        axis: None,
     });
     v.extend(mitsuba_configs());
     v
@@ -121,6 +129,7 @@ fn mitsuba_configs() -> Vec<Config> {
             wo,
             mode: TransportMode::Radiance,
             cap,
+            axis: None,
         });
     };
     let mut i = 0;
@@ -194,28 +203,121 @@ fn mitsuba_configs() -> Vec<Config> {
             wo: -dir(30.0, 10.0),
             mode: TransportMode::Radiance,
             cap: None,
+            axis: None,
         });
     }
-    v.push(Config {
-        name: "roughconductor GGX α=0.3 tilted normal, importance".into(),
-        bsdf: Bsdf::new(
-            Lobes::new(
-                &Material {
-                    alpha: 0.3,
-                    ks: Rgb::ONE,
-                    eta: MI_ETA,
-                    k: MI_K,
-                    ..material(MaterialKind::RoughConductor)
-                },
-                Rgb::ZERO,
-                Rgb::ONE,
-            ),
-            dir(20.0, 90.0),
-            Vec3::Z,
-        ),
+    v.push(tilted_importance(
+        "roughconductor GGX α=0.3",
+        &Material {
+            alpha: 0.3,
+            ks: Rgb::ONE,
+            eta: MI_ETA,
+            k: MI_K,
+            ..material(MaterialKind::RoughConductor)
+        },
+    ));
+    v
+}
+
+/// `m` under a shading normal tilted 20° from the geometric one, in importance mode (where
+/// the adjoint correction applies).
+fn tilted_importance(name: &str, m: &Material) -> Config {
+    Config {
+        name: format!("{name} tilted normal, importance"),
+        bsdf: Bsdf::new(Lobes::new(m, m.kd, m.ks), dir(20.0, 90.0), Vec3::Z),
         wo: dir(40.0, 250.0),
         mode: TransportMode::Importance,
         cap: None,
+        axis: None,
+    }
+}
+
+/// Relative index of the rough dielectric configurations (interior over exterior).
+pub const ROUGH_GLASS_ETA: f32 = 1.5;
+
+/// A rough dielectric of distribution `kind` and roughness `alpha` with constant reflection
+/// and transmission factors `ks` and `kt` (per crossing).
+pub fn rough_glass(kind: Microfacet, alpha: f32, ks: Rgb, kt: Rgb) -> Material {
+    Material {
+        microfacet: kind,
+        alpha,
+        ni: ROUGH_GLASS_ETA,
+        ks,
+        tf: kt * kt,
+        ..material(MaterialKind::RoughGlass)
+    }
+}
+
+/// The local mirror and refraction directions of `wo` through a smooth interface of relative
+/// index `eta` (interior over exterior); `None` for the refraction beyond the critical angle.
+pub fn smooth_directions(wo: Vec3, eta: f32) -> (Vec3, Option<Vec3>) {
+    let mirror = Vec3::new(-wo.x, -wo.y, wo.z);
+    let eta = if wo.z > 0.0 { eta } else { 1.0 / eta };
+    let sin2_t = (1.0 - wo.z * wo.z) / (eta * eta);
+    let refracted = (sin2_t < 1.0).then(|| {
+        let cos_t = (1.0 - sin2_t).sqrt() * -wo.z.signum();
+        Vec3::new(-wo.x / eta, -wo.y / eta, cos_t).normalize()
     });
+    (mirror, refracted)
+}
+
+/// Rough dielectrics (GGX and Beckmann, α 0.01, 0.1, 0.5) entered from outside at 30°, left
+/// from inside at 20° and from beyond the smooth interface's critical angle (55° inside),
+/// alternately in radiance and importance mode; narrow lobes get two configurations, a fine
+/// grid about the mirror direction and one about the refraction (the other lobe falls in the
+/// harness's extra bin, with its probability as expectation). Also a tilted shading normal.
+pub fn rough_glass_configs() -> Vec<Config> {
+    let mut v = Vec::new();
+    let (ks, kt) = (Rgb::new(0.9, 0.8, 1.0), Rgb::new(0.7, 0.9, 0.8));
+    let mut i = 0;
+    for kind in [Microfacet::Ggx, Microfacet::Beckmann] {
+        for alpha in [0.01f32, 0.1, 0.5] {
+            for (side, wo) in [
+                ("entering", dir(30.0, 20.0)),
+                ("leaving", dir(160.0, 70.0)),
+                ("leaving beyond the critical angle", dir(125.0, 300.0)),
+            ] {
+                let bsdf = flat_bsdf(&rough_glass(kind, alpha, ks, kt));
+                let mode = if i % 2 == 0 {
+                    TransportMode::Radiance
+                } else {
+                    TransportMode::Importance
+                };
+                i += 1;
+                let name = format!("roughdielectric {kind:?} α={alpha} {side} {mode:?}");
+                if alpha >= 0.5 {
+                    v.push(Config {
+                        name,
+                        bsdf,
+                        wo,
+                        mode,
+                        cap: None,
+                        axis: None,
+                    });
+                    continue;
+                }
+                let (mirror, refracted) = smooth_directions(wo, ROUGH_GLASS_ETA);
+                // Beyond the critical angle the refracted light leaves about the horizon.
+                let refracted = refracted.unwrap_or(Vec3::new(-wo.x, -wo.y, -wo.z).normalize());
+                // About the lobes' width: Beckmann's have no tails.
+                let widths = if kind == Microfacet::Ggx { 12.0 } else { 6.0 };
+                let cap = (widths * alpha as f64).min(1.2);
+                for (lobe, axis) in [("reflection", mirror), ("refraction", refracted)] {
+                    v.push(Config {
+                        name: format!("{name} ({lobe} cap)"),
+                        bsdf,
+                        wo,
+                        mode,
+                        cap: Some(cap),
+                        axis: Some(axis),
+                    });
+                }
+            }
+        }
+    }
+    v.push(tilted_importance(
+        "roughdielectric GGX α=0.3",
+        &rough_glass(Microfacet::Ggx, 0.3, ks, kt),
+    ));
     v
 }

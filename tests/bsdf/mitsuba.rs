@@ -269,8 +269,12 @@ fn one_sided_is_black_from_the_back() {
             }
         }
     }
-    // Glass and thin glass scatter from both sides whatever the flag.
-    for kind in [MaterialKind::Glass, MaterialKind::ThinGlass] {
+    // Glass, rough glass and thin glass scatter from both sides whatever the flag.
+    for kind in [
+        MaterialKind::Glass,
+        MaterialKind::RoughGlass,
+        MaterialKind::ThinGlass,
+    ] {
         let b = flat_bsdf(&Material {
             ks: Rgb::ONE,
             ..material(kind)
@@ -283,8 +287,8 @@ fn one_sided_is_black_from_the_back() {
 }
 
 /// Delta-ness and guiding of the Mitsuba kinds: the smooth ones are delta (but smooth plastic,
-/// whose base is diffuse); the rough ones guide while their Blinn-equivalent exponent
-/// `2/α² - 2` is soft.
+/// whose base is diffuse); the rough ones (rough dielectric too) guide while their
+/// Blinn-equivalent exponent `2/α² - 2` is soft.
 #[test]
 fn mitsuba_kinds_delta_and_guiding() {
     use footprint::guide::guides_at;
@@ -301,6 +305,7 @@ fn mitsuba_kinds_delta_and_guiding() {
         (MaterialKind::Plastic, false),
         (MaterialKind::RoughConductor, false),
         (MaterialKind::RoughPlastic, false),
+        (MaterialKind::RoughGlass, false),
     ] {
         let l = lobes(kind, 0.3);
         assert_eq!(l.is_delta(), delta, "{kind:?}");
@@ -308,7 +313,11 @@ fn mitsuba_kinds_delta_and_guiding() {
             assert!(!guides_at(&l, 1e9), "{kind:?} guides");
         }
     }
-    for kind in [MaterialKind::RoughConductor, MaterialKind::RoughPlastic] {
+    for kind in [
+        MaterialKind::RoughConductor,
+        MaterialKind::RoughPlastic,
+        MaterialKind::RoughGlass,
+    ] {
         // α = 0.3: exponent 2/0.09 - 2 = 20.2.
         assert!(guides_at(&lobes(kind, 0.3), 21.0));
         assert!(!guides_at(&lobes(kind, 0.3), 20.0));

@@ -36,7 +36,7 @@ const NAMED_IOR: &[(&str, f32)] = &[
     ("diamond", 2.419),
 ];
 
-const BSDFS: &str = "diffuse, twosided, dielectric, thindielectric, conductor, roughconductor, plastic, roughplastic";
+const BSDFS: &str = "diffuse, twosided, dielectric, thindielectric, roughdielectric, conductor, roughconductor, plastic, roughplastic";
 
 impl<'a, 'd> Builder<'a, 'd> {
     fn ior(&self, p: &Props<'a, 'd>, name: &str, default: f32) -> Result<f32> {
@@ -230,6 +230,32 @@ impl<'a, 'd> Builder<'a, 'd> {
                     m.kind = MaterialKind::ThinGlass;
                     m.tf = st;
                 }
+            }
+            "roughdielectric" => {
+                let int = self.ior(&p, "int_ior", 1.5046)?;
+                let ext = self.ior(&p, "ext_ior", 1.000277)?;
+                if int == ext {
+                    return Err(self.doc.err(
+                        node,
+                        format!("int_ior and ext_ior must differ (both {int})"),
+                    ));
+                }
+                m.kind = MaterialKind::RoughGlass;
+                m.ni = int / ext;
+                (m.ks, m.ks_texture) =
+                    self.color_or_texture(&p, "specular_reflectance", Rgb::ONE)?;
+                let (st, stt) = self.color_or_texture(&p, "specular_transmittance", Rgb::ONE)?;
+                if stt.is_some() {
+                    self.doc.unsupported(
+                        node,
+                        "a textured specular_transmittance of a roughdielectric",
+                        "a constant specular_transmittance",
+                        "its constant factor",
+                    )?;
+                }
+                // `tf` is the transmittance of a passage in and out: two interfaces.
+                m.tf = st * st;
+                (m.microfacet, m.alpha) = self.microfacet(&p, node)?;
             }
             "conductor" | "roughconductor" => {
                 (m.eta, m.k) = self.conductor_ior(&p, node)?;

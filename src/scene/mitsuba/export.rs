@@ -391,6 +391,16 @@ fn bsdf_xml(
                 colour_or_texture(scene, "specular_reflectance", m.ks, m.ks_texture, tf, out)?
             )
         }
+        MaterialKind::RoughGlass => {
+            // Scatters on both sides by itself: never wrapped in `twosided`.
+            return Ok(format!(
+                "  <bsdf type=\"roughdielectric\" id=\"{id}\">{}<float name=\"int_ior\" value=\"{:?}\"/><float name=\"ext_ior\" value=\"1.0\"/>{}{}</bsdf>",
+                rough(MaterialKind::RoughGlass),
+                m.ni,
+                colour_or_texture(scene, "specular_reflectance", m.ks, m.ks_texture, tf, out)?,
+                rgb("specular_transmittance", m.tf.map(f32::sqrt))
+            ));
+        }
         MaterialKind::Glass | MaterialKind::ThinGlass => {
             // footprint's `tf` is per passage through a solid (two interfaces) for glass.
             let st = if m.kind == MaterialKind::Glass {

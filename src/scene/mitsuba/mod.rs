@@ -6,12 +6,12 @@
 //! `id`/`<ref>`, `to_world` transforms, the `perspective` sensor (`fov`, `fov_axis`) with its
 //! `hdrfilm` (size, `box`/`tent`/`gaussian` filter) and sampler (`sample_count`), the `path`
 //! (and `ptracer`) integrator's `max_depth`; shapes `obj`, `rectangle`, `cube`, `sphere`;
-//! BSDFs `diffuse`, `twosided`, `dielectric`, `thindielectric`, `conductor`, `roughconductor`,
-//! `plastic`, `roughplastic`; textures `bitmap` and `checkerboard` (with `to_uv`); emitters
-//! `area`, `point`, `spot`, `constant`. Anything else stops the import with an error naming
-//! the element, its line and what is supported, unless `--lenient`, which replaces it with
-//! the stand-in the error names and lists every replacement. `docs/mitsuba.md` tables the
-//! mapping.
+//! BSDFs `diffuse`, `twosided`, `dielectric`, `thindielectric`, `roughdielectric`, `conductor`,
+//! `roughconductor`, `plastic`, `roughplastic`; textures `bitmap` and `checkerboard` (with
+//! `to_uv`); emitters `area`, `point`, `spot`, `constant`. Anything else stops the import
+//! with an error naming the element, its line and what is supported, unless `--lenient`,
+//! which replaces it with the stand-in the error names and lists every replacement.
+//! `docs/mitsuba.md` tables the mapping.
 //!
 //! The import reads the document in `import.rs`, into a builder (`builder.rs`) that each
 //! element's file extends: `integrator.rs`, `sensor.rs` (with the film, sampler and pixel
