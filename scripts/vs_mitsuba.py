@@ -300,6 +300,10 @@ TABLE = [
     ("Bitterli Cornell 256x256", os.path.join(EXT, "cornell-box-bitterli", "scene.xml"), dict(resx=256, resy=256)),
     ("McGuire Cornell 64x64", os.path.join(EXT, "cornell-box-mcguire", "mitsuba", "scene.xml"), dict(res=64)),
     ("McGuire Cornell 256x256", os.path.join(EXT, "cornell-box-mcguire", "mitsuba", "scene.xml"), dict(res=256)),
+    ("Veach MIS 128x72", os.path.join(ROOT, "scenes", "public", "veach-mis", "scene.xml"), dict(resx=128, resy=72)),
+    ("Veach Bidir 96x96", os.path.join(ROOT, "scenes", "public", "veach-bidir", "scene.xml"), dict(res=96)),
+    ("torus 128x96", os.path.join(ROOT, "scenes", "public", "fetched", "torus", "scene.xml"), dict(resx=128, resy=96)),
+    ("staircase 72x128", os.path.join(ROOT, "scenes", "public", "fetched", "staircase", "scene.xml"), dict(resx=72, resy=128)),
     ("cornell (bundled) 128x128", os.path.join(ROOT, "scenes", "cornell", "mitsuba", "scene.xml"), dict(resx=128, resy=128)),
     ("door (bundled) 128x128", os.path.join(ROOT, "scenes", "door", "mitsuba", "scene.xml"), dict(resx=128, resy=128)),
     ("desk (bundled) 128x128", os.path.join(ROOT, "scenes", "desk", "mitsuba", "scene.xml"), dict(resx=128, resy=128)),
@@ -385,7 +389,8 @@ def cmd_compare(args):
         if args.only and not any(o.lower() in name.lower() for o in args.only):
             continue
         if not os.path.exists(xml):
-            print(f"SKIPPED {name}: {xml} is absent (the public scenes live beside the repository)")
+            print(f"SKIPPED {name}: {xml} is absent (../shared/scenes-ext lives beside the repository; "
+                  f"scripts/public_scenes.py fetches scenes/public/fetched)")
             continue
         print(f"{name}", flush=True)
         ref = mitsuba_reference(mi, name, xml, defines, out, args.reference_time)
