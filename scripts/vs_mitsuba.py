@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """footprint against Mitsuba 3 (variant scalar_rgb): references, image checks, speed.
 
-    python3 scripts/vs_mitsuba.py references   # Mitsuba renders of the bundled scenes' XML,
-                                            # committed in tests/mitsuba-references/
+    python3 scripts/vs_mitsuba.py references   # Mitsuba renders of the bundled scenes' XML and
+                                            # of scenes/public, in tests/mitsuba-references/
     python3 scripts/vs_mitsuba.py check        # both renderers on ../shared/scenes-ext (or the
                                             # scenes given), per-block z-test + image means
     python3 scripts/vs_mitsuba.py bench        # time per sample, Mitsuba `path` vs footprint pt
@@ -47,7 +47,15 @@ BUNDLED = {
     "slit": dict(resx=64, resy=48, rfilter="box", max_depth=10, batches=32, spp=1024),
 }
 
-# The public scenes (../shared/scenes-ext): parameters of the check.
+# The public scenes kept in the repository (scenes/public/<name>/scene.xml, unchanged but for
+# what scenes/public/README.md lists): their own -D parameters, batches x spp. Their
+# references sit beside the bundled ones as public/<name>-{mean,stderr}.exr.
+PUBLIC = {
+    "veach-mis": dict(defines=dict(resx=64, resy=36), batches=32, spp=1024),
+    "veach-bidir": dict(defines=dict(res=48), batches=32, spp=256),
+}
+
+# The public scenes beside the repository (../shared/scenes-ext): parameters of the check.
 EXTERNAL = {
     "cornell-box-bitterli/scene.xml": dict(defines=dict(resx=64, resy=64, max_depth=8), batches=32, spp=128),
     "cornell-box-mcguire/mitsuba/scene.xml": dict(defines=dict(res=64), batches=32, spp=128),
@@ -166,19 +174,25 @@ def cmd_references(args):
     meta = json.load(open(meta_path)) if os.path.exists(meta_path) else {}
     meta.update({"mitsuba": mi.__version__, "variant": "scalar_rgb"})
     meta.setdefault("scenes", {})
-    only = set(args.only or BUNDLED)
-    for name, p in ((k, v) for k, v in BUNDLED.items() if k in only):
+    jobs = []
+    for name, p in BUNDLED.items():
         xml = os.path.join(ROOT, "scenes", name, "mitsuba", "scene.xml")
         if not os.path.exists(xml):
             xml = os.path.join(ROOT, "scenes", name, "scene.xml")
-        defines = {k: p[k] for k in ("resx", "resy", "rfilter", "max_depth")}
+        jobs.append((name, xml, {k: p[k] for k in ("resx", "resy", "rfilter", "max_depth")}, p))
+    for name, p in PUBLIC.items():
+        xml = os.path.join(ROOT, "scenes", "public", name, "scene.xml")
+        jobs.append((f"public/{name}", xml, p["defines"], p))
+    only = set(args.only or [j[0] for j in jobs])
+    for name, xml, defines, p in (j for j in jobs if j[0] in only):
         imgs, secs = mitsuba_batches(xml, defines, p["batches"], p["spp"])
         mean = imgs.mean(axis=0).astype(np.float32)
         stderr = (imgs.std(axis=0, ddof=1) / math.sqrt(imgs.shape[0])).astype(np.float32)
+        os.makedirs(os.path.dirname(os.path.join(REF_DIR, name)), exist_ok=True)
         mi.Bitmap(mean).write(os.path.join(REF_DIR, f"{name}-mean.exr"))
         mi.Bitmap(stderr).write(os.path.join(REF_DIR, f"{name}-stderr.exr"))
         meta["scenes"][name] = dict(p, seconds=round(secs, 1), mean=mean.mean(axis=(0, 1)).tolist())
-        print(f"{name}: {p['batches']} x {p['spp']} spp at {p['resx']}x{p['resy']} in {secs:.1f} s, mean {mean.mean(axis=(0, 1))}")
+        print(f"{name}: {p['batches']} x {p['spp']} spp, -D {defines}, in {secs:.1f} s, mean {mean.mean(axis=(0, 1))}")
     with open(os.path.join(REF_DIR, "references.json"), "w") as f:
         json.dump(meta, f, indent=2)
 
@@ -418,7 +432,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest="cmd", required=True)
     r = sub.add_parser("references", help="render the bundled scenes' references with Mitsuba")
-    r.add_argument("only", nargs="*", help=f"scenes to render [default: all of {', '.join(BUNDLED)}]")
+    r.add_argument("only", nargs="*", help=f"scenes to render [default: all of {', '.join(BUNDLED)}, "
+                   f"{', '.join('public/' + k for k in PUBLIC)}]")
     c = sub.add_parser("check", help="compare both renderers on Mitsuba XML scenes")
     c.add_argument("scenes", nargs="*", help="XML scenes [default: ../shared/scenes-ext]")
     c.add_argument("-D", dest="define", action="append", default=[], help="name=value for both renderers")
