@@ -53,6 +53,7 @@
 //! `surface.rs`.
 
 mod blinn;
+pub mod bump;
 pub mod fresnel;
 mod lobes;
 pub mod material;
