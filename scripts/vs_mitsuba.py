@@ -45,6 +45,7 @@ BUNDLED = {
     "glass": dict(resx=48, resy=48, rfilter="box", max_depth=4, batches=32, spp=512),
     "panes": dict(resx=48, resy=48, rfilter="box", max_depth=8, batches=32, spp=512),
     "slit": dict(resx=64, resy=48, rfilter="box", max_depth=10, batches=32, spp=1024),
+    "bumpmap": dict(resx=32, resy=32, rfilter="box", max_depth=3, batches=32, spp=512),
 }
 
 # The public scenes kept in the repository (scenes/public/<name>/scene.xml, unchanged but for

@@ -192,3 +192,193 @@ fn sample_weight_is_eval_cos_over_pdf() {
         }
     }
 }
+
+/// A one-rectangle scene (`[-1, 1]²` at `z = 0`, facing +z; the light above) with the BSDF
+/// `bsdf`, written to a temporary folder; texture file names are absolute.
+fn plane_scene(tag: &str, bsdf: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("footprint-bumpmap-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("scene.xml");
+    let xml = format!(
+        r#"<scene version="3.0.0">
+  <sensor type="perspective"><float name="fov" value="40"/>
+    <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+  </sensor>
+  <shape type="rectangle"><transform name="to_world"><scale value="0.2"/><rotate x="1" angle="180"/><translate z="3"/></transform>
+    <emitter type="area"><rgb name="radiance" value="1"/></emitter></shape>
+  {bsdf}
+</scene>"#
+    );
+    std::fs::write(&path, xml).unwrap();
+    path
+}
+
+fn height(name: &str) -> String {
+    common::scenes_dir()
+        .join("bumpmap")
+        .join(name)
+        .display()
+        .to_string()
+}
+
+/// Points of the plane `(x, y)` in the interior of its texture's cells, each seen straight
+/// down from above.
+fn plane_hits(scene: &Scene) -> Vec<(footprint::scene::geometry::SurfaceHit, Vec3)> {
+    let mut out = Vec::new();
+    for i in 0..9 {
+        for j in 0..5 {
+            let (x, y) = (-0.75 + 0.17 * i as f32, -0.7 + 0.31 * j as f32);
+            let o = Vec3::new(x + 0.3, y - 0.2, 2.0);
+            let dir = (Vec3::new(x, y, 0.0) - o).normalize();
+            let hit = scene.intersect(o, dir, f32::INFINITY).expect("the plane");
+            out.push((hit, -dir));
+        }
+    }
+    out
+}
+
+/// A constant height field has no gradient: the BSDF is the nested one exactly (the same
+/// frame and values, bit for bit), for a diffuse and a rough conductor.
+#[test]
+fn a_constant_height_field_leaves_the_bsdf_unchanged() {
+    let nested = [
+        r#"<bsdf type="diffuse"><rgb name="reflectance" value="0.6, 0.5, 0.4"/></bsdf>"#,
+        r#"<bsdf type="roughconductor"><string name="distribution" value="ggx"/><float name="alpha" value="0.2"/></bsdf>"#,
+    ];
+    for (k, inner) in nested.iter().enumerate() {
+        let bumped = format!(
+            r#"<shape type="rectangle"><bsdf type="bumpmap"><texture type="bitmap"><string name="filename" value="{}"/></texture><float name="scale" value="3"/>{inner}</bsdf></shape>"#,
+            height("flat.png")
+        );
+        let plain = format!(r#"<shape type="rectangle">{inner}</shape>"#);
+        let a = load(&plane_scene(&format!("flat{k}"), &bumped));
+        let b = load(&plane_scene(&format!("plain{k}"), &plain));
+        assert!(a.materials.iter().any(|m| m.bump.is_some()));
+        for ((ha, wo), (hb, _)) in plane_hits(&a).into_iter().zip(plane_hits(&b)) {
+            let (ba, bb) = (a.bsdf(&ha), b.bsdf(&hb));
+            assert!(ba.bump.is_none(), "no gradient, no bump");
+            assert_eq!(format!("{:?}", ba.frame), format!("{:?}", bb.frame));
+            for wi in [unit(10.0, 20.0), unit(60.0, 250.0), unit(85.0, 100.0)] {
+                let (fa, fb) = (
+                    ba.eval(wo, wi, TransportMode::Radiance),
+                    bb.eval(wo, wi, TransportMode::Radiance),
+                );
+                assert_eq!(
+                    fa.to_array().map(f32::to_bits),
+                    fb.to_array().map(f32::to_bits)
+                );
+                assert_eq!(ba.pdf(wo, wi).to_bits(), bb.pdf(wo, wi).to_bits());
+            }
+        }
+    }
+}
+
+/// A linear ramp `h = (10 + 8 x) / 255` over the 16 columns of `ramp.png` (raw) has
+/// `∂h/∂u = 16 · 8 / 255` inside the image (bilinear interpolation of a line is the line);
+/// on the rectangle (`∂p/∂u = (2, 0, 0)`, `∂p/∂v = (0, 2, 0)`) scaled by `s` it tilts the
+/// normal to `(-2 s ∂h/∂u, 0, 4)`: by `atan(s ∂h/∂u / 2)` toward -x, for either sign of `s`.
+#[test]
+fn a_linear_ramp_tilts_the_normal_by_the_analytic_angle() {
+    for scale in [0.5f32, 2.0, -1.5] {
+        let xml = format!(
+            r#"<shape type="rectangle"><bsdf type="bumpmap"><texture type="bitmap"><boolean name="raw" value="true"/><string name="filename" value="{}"/></texture><float name="scale" value="{scale}"/><bsdf type="diffuse"/></bsdf></shape>"#,
+            height("ramp.png")
+        );
+        let scene = load(&plane_scene("ramp", &xml));
+        let dh_du = 16.0 * 8.0 / 255.0;
+        let want = (scale * dh_du / 2.0).atan();
+        for (hit, wo) in plane_hits(&scene) {
+            let bsdf = scene.bsdf(&hit);
+            let bump = bsdf.bump.expect("a gradient");
+            let n = bsdf.frame.to_world(bump.normal_local);
+            let tilt = (-n.x).atan2(n.z);
+            assert!(
+                (tilt - want).abs() < 1e-5 && n.y.abs() < 1e-6,
+                "scale {scale}: normal {n} tilted {tilt}, want {want}"
+            );
+            // Seen from above the tilted plane, the flip leaves it as it is.
+            assert_eq!(bump.normal_for(bsdf.frame.to_local(wo)), bump.normal_local);
+        }
+    }
+}
+
+/// What the importer refuses, naming the element's line (all on line 8 here); and an `id` on the nested BSDF
+/// names the nested BSDF alone, as Mitsuba 3 resolves it (a `<ref>` to it gets no bump).
+#[test]
+fn the_importer_reads_mitsubas_structure_and_refuses_the_rest() {
+    let tex = format!(
+        r#"<texture name="map" type="bitmap"><string name="filename" value="{}"/></texture>"#,
+        height("bumps.png")
+    );
+    let diffuse = r#"<bsdf type="diffuse"/>"#;
+    let cases = [
+        (
+            format!(r#"<bsdf type="bumpmap">{tex}</bsdf>"#),
+            "needs a nested <bsdf>",
+        ),
+        (
+            format!(r#"<bsdf type="bumpmap">{tex}{diffuse}{diffuse}</bsdf>"#),
+            "one nested <bsdf>",
+        ),
+        (
+            format!(r#"<bsdf type="bumpmap">{diffuse}</bsdf>"#),
+            "needs a nested <texture>",
+        ),
+        (
+            format!(r#"<bsdf type="bumpmap">{tex}{tex}{diffuse}</bsdf>"#),
+            "property 'map' is given twice",
+        ),
+        (
+            format!(r#"<bsdf type="bumpmap"><texture type="checkerboard"/>{diffuse}</bsdf>"#),
+            "must be a 'bitmap'",
+        ),
+        (
+            format!(r#"<bsdf type="bumpmap">{tex}<bsdf type="dielectric"/></bsdf>"#),
+            "bump-mapped dielectric",
+        ),
+        (
+            format!(r#"<bsdf type="bumpmap">{tex}<emitter type="point"/>{diffuse}</bsdf>"#),
+            "not <emitter>",
+        ),
+        (
+            format!(r#"<bsdf type="bumpmap">{tex}<float name="scael" value="2"/>{diffuse}</bsdf>"#),
+            "scael",
+        ),
+    ];
+    for (i, (bsdf, want)) in cases.iter().enumerate() {
+        let path = plane_scene(
+            &format!("bad{i}"),
+            &format!("<shape type=\"rectangle\">{bsdf}</shape>"),
+        );
+        let err = match mitsuba::load(&path, &ImportOptions::default()) {
+            Ok(_) => panic!("{bsdf}: imported"),
+            Err(e) => e.to_string(),
+        };
+        assert!(
+            err.contains(want) && err.contains("scene.xml:8:"),
+            "{bsdf}: {err}"
+        );
+    }
+    // Bitterli's exports: the id on the nested twosided.
+    let xml = format!(
+        r#"<bsdf type="bumpmap">{tex}<bsdf type="twosided" id="Alu">{diffuse}</bsdf></bsdf>
+  <bsdf type="bumpmap" id="Bumped">{tex}<bsdf type="twosided">{diffuse}</bsdf></bsdf>
+  <shape type="rectangle"><ref id="Alu"/></shape>
+  <shape type="rectangle"><transform name="to_world"><translate z="-1"/></transform><ref id="Bumped"/></shape>"#
+    );
+    let scene = load(&plane_scene("ids", &xml));
+    let hit = scene
+        .intersect(Vec3::new(0.1, 0.1, 2.0), -Vec3::Z, f32::INFINITY)
+        .expect("the plane at z = 0");
+    let alu = &scene.materials[hit.material as usize];
+    assert!(alu.bump.is_none() && alu.two_sided, "{alu:?}");
+    let bumped = scene
+        .materials
+        .iter()
+        .find(|m| m.name == "Bumped")
+        .expect("the bumped material");
+    let b = bumped.bump.expect("a bump");
+    assert!(b.nested_two_sided && !bumped.two_sided && b.scale == 1.0);
+    assert!(b.flip_invalid_normals && b.shadowing);
+}

@@ -5,7 +5,8 @@
   periodic across the edges (the texture wraps);
 * `ridges.png`, 48x48 8-bit RGB: ridges along a diagonal with a coloured tint, so that the
   luminance (not one channel) drives the gradient;
-* `ramp.png`, 16x4 8-bit grey: 10 + 8x in column x (a linear ramp, wrapping at the edge).
+* `ramp.png`, 16x4 8-bit grey: 10 + 8x in column x (a linear ramp, wrapping at the edge);
+* `flat.png`, 4x4 8-bit grey: 128 everywhere (no gradient).
 
     python3 scenes/bumpmap/make_heights.py
 """
@@ -48,3 +49,4 @@ def ridges(x, y):
 png(os.path.join(HERE, "bumps.png"), 64, 32, 1, bumps)
 png(os.path.join(HERE, "ridges.png"), 48, 48, 3, ridges)
 png(os.path.join(HERE, "ramp.png"), 16, 4, 1, lambda x, y: (10 + 8 * x,))
+png(os.path.join(HERE, "flat.png"), 4, 4, 1, lambda x, y: (128,))
