@@ -267,3 +267,59 @@ impl Bsdf {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Barycentric texture coordinates give the edges themselves; a scaled, swapped
+    /// parametrisation gives the scaled, swapped edges; a degenerate one gives zero partials
+    /// and no normal (Mitsuba's would be NaN), so the bump leaves the frame alone.
+    #[test]
+    fn uv_partials_as_mitsubas_mesh_and_the_degenerate_case() {
+        let (e1, e2) = (Vec3::new(2.0, 0.0, 0.5), Vec3::new(0.3, 1.5, 0.0));
+        let bary = [Vec2::ZERO, Vec2::X, Vec2::Y];
+        assert_eq!(uv_partials(e1, e2, bary), (e1, e2));
+        let swapped = [Vec2::ZERO, Vec2::new(0.0, 0.5), Vec2::new(2.0, 0.0)];
+        let (du, dv) = uv_partials(e1, e2, swapped);
+        assert!(du.abs_diff_eq(0.5 * e2, 1e-6) && dv.abs_diff_eq(2.0 * e1, 1e-6));
+        let line = [Vec2::ZERO, Vec2::X, Vec2::new(2.0, 0.0)];
+        let (du, dv) = uv_partials(e1, e2, line);
+        assert_eq!((du, dv), (Vec3::ZERO, Vec3::ZERO));
+        assert_eq!(
+            bumped_normal(Vec3::Z, Vec3::Z, du, dv, Vec2::new(0.3, -0.2)),
+            None
+        );
+    }
+
+    /// The flip mirrors the bumped normal about the shading normal exactly where `wo` lies on
+    /// different sides of the two, and the shadowing term is 1 at normal incidence and falls
+    /// toward grazing.
+    #[test]
+    fn flip_and_shadowing() {
+        let n = Vec3::new(0.5, 0.0, 0.75f32.sqrt());
+        let map = BumpMap {
+            texture: 0,
+            scale: 1.0,
+            flip_invalid_normals: true,
+            shadowing: true,
+            nested_two_sided: false,
+        };
+        let bump = Bump::new(&map, &Frame::from_z(Vec3::Z), n);
+        let n = bump.normal_local;
+        let below_bumped = Vec3::new(-0.9, 0.0, 0.1f32).normalize();
+        assert!(below_bumped.dot(n) < 0.0);
+        assert_eq!(bump.normal_for(below_bumped), Vec3::new(-n.x, -n.y, n.z));
+        assert_eq!(bump.normal_for(Vec3::new(0.2, 0.1, 0.9).normalize()), n);
+        assert_eq!(bump.shadowing(Vec3::Z), 1.0);
+        let (g45, g85) = (
+            bump.shadowing(Vec3::new(1.0, 0.0, 1.0).normalize()),
+            bump.shadowing(Vec3::new(
+                85f32.to_radians().sin(),
+                0.0,
+                85f32.to_radians().cos(),
+            )),
+        );
+        assert!(1.0 > g45 && g45 > g85 && g85 > 0.0, "{g45} {g85}");
+    }
+}
