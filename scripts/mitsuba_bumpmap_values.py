@@ -38,7 +38,10 @@ def unit(t, p):
 def main():
     scene = mi.load_file(os.path.join(ROOT, "scenes/bumpmap/scene.xml"))
     print(f"// Mitsuba {mi.__version__}, scalar_rgb: (origin, target, wi, radiance eval, importance eval, pdf)")
-    print("const MITSUBA_POINTS: &[([f32; 3], [f32; 3], [f32; 3], [f32; 3], [f32; 3], f32)] = &[")
+    print("/// (origin, target, wi, radiance eval, importance eval, pdf).")
+    print("type Point = ([f32; 3], [f32; 3], [f32; 3], [f32; 3], [f32; 3], f32);")
+    print("#[allow(clippy::excessive_precision)]")
+    print("const MITSUBA_POINTS: &[Point] = &[")
     for o in ORIGINS:
         for t in TARGETS:
             d = mi.Vector3f(t) - mi.Vector3f(o)

@@ -387,10 +387,10 @@ impl Scene {
             None => m.ks,
         };
         let mut bsdf = Bsdf::new(Lobes::new(m, kd, ks), hit.ns, hit.facing_ng());
-        if F::TEXTURES {
-            if let Some(map) = &m.bump {
-                bsdf.bump = self.bump_at(map, hit, &bsdf);
-            }
+        if F::TEXTURES
+            && let Some(map) = &m.bump
+        {
+            bsdf.bump = self.bump_at(map, hit, &bsdf);
         }
         bsdf
     }
