@@ -1,5 +1,6 @@
-//! Textures: images (`map_Kd`, Mitsuba `bitmap`) decoded once to linear RGB and looked up
-//! bilinearly with wrapping, and Mitsuba's procedural `checkerboard`.
+//! Textures: images (`map_Kd`, Mitsuba `bitmap`, sRGB-encoded or `raw`) looked up bilinearly
+//! with wrapping, and Mitsuba's procedural `checkerboard`; an image's luminance gradient, as
+//! a bump map reads it (Mitsuba's `eval_1_grad`).
 //!
 //! Texture coordinates arrive as stored on the triangles, OBJ convention (`v` up). A lookup
 //! first turns them into image convention `(u, 1 - v)` (`v` down, row 0 at the top; what

@@ -7,7 +7,7 @@
 //! `hdrfilm` (size, `box`/`tent`/`gaussian` filter) and sampler (`sample_count`), the `path`
 //! (and `ptracer`) integrator's `max_depth`; shapes `obj`, `rectangle`, `cube`, `sphere`;
 //! BSDFs `diffuse`, `twosided`, `bumpmap`, `dielectric`, `thindielectric`, `conductor`, `roughconductor`,
-//! `plastic`, `roughplastic`; textures `bitmap` and `checkerboard` (with `to_uv`); emitters
+//! `plastic`, `roughplastic`; textures `bitmap` (also `raw`) and `checkerboard` (with `to_uv`); emitters
 //! `area`, `point`, `spot`, `constant`. Anything else stops the import with an error naming
 //! the element, its line and what is supported, unless `--lenient`, which replaces it with
 //! the stand-in the error names and lists every replacement. `docs/mitsuba.md` tables the
