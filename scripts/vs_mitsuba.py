@@ -47,6 +47,11 @@ BUNDLED = {
     "panes": dict(resx=48, resy=48, rfilter="box", max_depth=8, batches=32, spp=512),
     "slit": dict(resx=64, resy=48, rfilter="box", max_depth=10, batches=32, spp=1024),
     "ltcheck": dict(resx=32, resy=32, rfilter="box", max_depth=8, batches=32, spp=1024),
+    "bumpmap": dict(resx=32, resy=32, rfilter="box", max_depth=3, batches=32, spp=512),
+    # Mitsuba's particle tracer on the same scene: the bump map is not reciprocal, so its
+    # `ptracer` and `path` differ there (tests/mitsuba.rs compares footprint's light tracer).
+    "bumpmap-ptracer": dict(scene="bumpmap", integrator="ptracer", resx=32, resy=32, rfilter="box", max_depth=3,
+                            batches=32, spp=512),
 }
 
 # The public scenes kept in the repository (scenes/public/<name>/scene.xml, unchanged but for
@@ -179,10 +184,12 @@ def cmd_references(args):
     meta.setdefault("scenes", {})
     jobs = []
     for name, p in BUNDLED.items():
-        xml = os.path.join(ROOT, "scenes", name, "mitsuba", "scene.xml")
+        folder = p.get("scene", name)
+        xml = os.path.join(ROOT, "scenes", folder, "mitsuba", "scene.xml")
         if not os.path.exists(xml):
-            xml = os.path.join(ROOT, "scenes", name, "scene.xml")
-        jobs.append((name, xml, {k: p[k] for k in ("resx", "resy", "rfilter", "max_depth")}, p))
+            xml = os.path.join(ROOT, "scenes", folder, "scene.xml")
+        keys = ("resx", "resy", "rfilter", "max_depth", "integrator")
+        jobs.append((name, xml, {k: p[k] for k in keys if k in p}, p))
     for name, p in PUBLIC.items():
         xml = os.path.join(ROOT, "scenes", "public", name, "scene.xml")
         if not os.path.exists(xml):

@@ -2,15 +2,15 @@
 //! non-delta `f` and density in the local shading frame (the kinds and their formulas:
 //! [`crate::bsdf`]).
 
-use crate::bsdf::blinn::{blinn_eval, blinn_pdf};
+use crate::bsdf::blinn::{blinn_eval, blinn_pdf, blinn_sample};
 use crate::bsdf::fresnel::{fresnel_conductor, fresnel_dielectric, fresnel_diffuse_reflectance};
 use crate::bsdf::material::{Material, MaterialKind};
 use crate::bsdf::microfacet::MicrofacetDistribution;
 use crate::bsdf::rough_glass::RoughGlass;
 use crate::bsdf::rough_plastic::RoughPlasticTables;
 use crate::math::{INV_PI, Rgb, luminance};
-use crate::sampling::cosine_hemisphere_pdf;
-use glam::Vec3;
+use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
+use glam::{Vec2, Vec3};
 
 /// The scattering lobes with their parameters resolved at a point (textures looked up).
 #[derive(Clone, Copy, Debug)]
@@ -69,6 +69,16 @@ pub enum Lobes {
         ks: Rgb,
         tf: Rgb,
     },
+}
+
+/// A direction sampled from the lobes in their local frame, `wo` above the surface.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum LocalSample {
+    /// From a non-delta lobe: `f` and the density are evaluated for it.
+    Smooth(Vec3),
+    /// From a delta lobe: the direction, its weight `f · cos / prob` and the lobe's discrete
+    /// probability `prob`.
+    Delta { li: Vec3, weight: Rgb, prob: f32 },
 }
 
 /// Lobes and the sidedness of the surface: what a material resolves to at a point. A bare
@@ -255,6 +265,70 @@ impl Lobes {
             self,
             Lobes::Glass { .. } | Lobes::ThinGlass { .. } | Lobes::RoughGlass(_)
         )
+    }
+
+    /// Samples a reflection in the local frame from `lo` (above the surface) with the lobe
+    /// number `u_lobe` and the pair `u`; `None` for the transmitting kinds.
+    #[inline]
+    pub(super) fn sample_reflection_local(
+        &self,
+        lo: Vec3,
+        u_lobe: f32,
+        u: Vec2,
+    ) -> Option<LocalSample> {
+        let mirror = Vec3::new(-lo.x, -lo.y, lo.z);
+        let delta = |weight: Rgb, prob: f32| {
+            Some(LocalSample::Delta {
+                li: mirror,
+                weight,
+                prob,
+            })
+        };
+        let li = match *self {
+            Lobes::Diffuse { .. } => sample_cosine_hemisphere(u),
+            Lobes::Glossy {
+                exponent, p_glossy, ..
+            } => {
+                if u_lobe < p_glossy {
+                    blinn_sample(exponent, lo, u)?
+                } else {
+                    sample_cosine_hemisphere(u)
+                }
+            }
+            Lobes::RoughConductor { distr, .. } => reflect(lo, distr.sample_visible(lo, u)),
+            Lobes::Plastic {
+                ks,
+                eta,
+                spec_weight,
+                ..
+            } => {
+                let fi = fresnel_dielectric(lo.z, eta);
+                let ps = specular_probability(fi, spec_weight);
+                if u_lobe < ps {
+                    return delta(ks * (fi / ps), ps);
+                }
+                sample_cosine_hemisphere(u)
+            }
+            Lobes::RoughPlastic {
+                spec_weight,
+                distr,
+                tables,
+                ..
+            } => {
+                let ps = specular_probability(1.0 - tables.transmittance(lo.z), spec_weight);
+                if u_lobe < ps {
+                    reflect(lo, distr.sample_visible(lo, u))
+                } else {
+                    sample_cosine_hemisphere(u)
+                }
+            }
+            Lobes::Mirror { r } => return delta(r, 1.0),
+            Lobes::Conductor { ks, eta, k } => {
+                return delta(ks * fresnel_conductor(lo.z, eta, k), 1.0);
+            }
+            Lobes::Glass { .. } | Lobes::ThinGlass { .. } | Lobes::RoughGlass(_) => return None,
+        };
+        Some(LocalSample::Smooth(li))
     }
 
     /// Non-delta part of `f` in the local frame, both directions above the surface (the

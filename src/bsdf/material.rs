@@ -13,6 +13,7 @@
 //! dielectric and the thin dielectric sheet; the mapping is tabled in `docs/mitsuba.md`.
 
 use crate::Rgb;
+use crate::bsdf::bump::BumpMap;
 use crate::bsdf::microfacet::Microfacet;
 use crate::bsdf::rough_plastic::RoughPlasticTables;
 
@@ -104,6 +105,8 @@ pub struct Material {
     /// Without them (or when `alpha`, `ni` or `microfacet` changed since), the BSDF fetches
     /// them from the process-wide cache at every hit, which is correct but takes a lock.
     pub rough_plastic: Option<&'static RoughPlasticTables>,
+    /// A height field that tilts the shading normal (Mitsuba `bumpmap` around this material).
+    pub bump: Option<BumpMap>,
 }
 
 impl Default for Material {
@@ -126,6 +129,7 @@ impl Default for Material {
             nonlinear: false,
             ke: Rgb::ZERO,
             rough_plastic: None,
+            bump: None,
         }
     }
 }

@@ -60,12 +60,21 @@
 //! block only so; a rule that also asked both directions to lie on one side of the geometric
 //! normal left it 10-30% darker there).
 //!
+//! Bump maps (Mitsuba's `bumpmap`, [`crate::bsdf::bump`]): the lobes are evaluated and
+//! sampled about a normal tilted by a height field's gradient, mirrored per call to the side
+//! `wo` arrives from (`flip_invalid_normals`), with the terminator's shadowing term on `f`.
+//! The frame of the cosine and of the adjoint correction stays the surface's shading frame:
+//! `f` is Mitsuba's cosine-weighted value divided by `|wi·n_s|` of that frame, so that every
+//! integrator's `f |wi·n_s|`, every sample weight and the importance-mode correction are
+//! Mitsuba's.
+//!
 //! The lobes a material resolves to at a point, with their `f` and densities in the local
 //! frame, are in `lobes.rs` (the Blinn lobe in `blinn.rs`); the BSDF at a point, which adds
 //! the shading frame, the sidedness and the adjoint correction and samples the lobes, in
 //! `surface.rs`.
 
 mod blinn;
+pub mod bump;
 pub mod fresnel;
 mod lobes;
 pub mod material;

@@ -2,9 +2,9 @@
 //! and the adjoint correction of shading normals; evaluation, density and sampling (the
 //! conventions: [`crate::bsdf`]).
 
-use crate::bsdf::blinn::blinn_sample;
-use crate::bsdf::fresnel::{fresnel_conductor, fresnel_dielectric};
-use crate::bsdf::lobes::{Lobes, SurfaceLobes, reflect, specular_probability};
+use crate::bsdf::bump::Bump;
+use crate::bsdf::fresnel::fresnel_dielectric;
+use crate::bsdf::lobes::{Lobes, LocalSample, SurfaceLobes};
 use crate::features::{Features, General};
 use crate::math::{Frame, INV_PI, Rgb, safe_sqrt};
 use crate::rng::Rng;
@@ -45,6 +45,9 @@ pub struct Bsdf {
     pub ng: Vec3,
     /// False: the reflecting kinds are black seen from below the shading normal.
     pub two_sided: bool,
+    /// A bump map's tilted normal at this point ([`crate::bsdf::bump`]): the lobes are then
+    /// evaluated about it, while `frame` stays the surface's shading frame.
+    pub bump: Option<Bump>,
 }
 
 impl Bsdf {
@@ -57,6 +60,7 @@ impl Bsdf {
             frame: Frame::from_z(ns),
             ng,
             two_sided,
+            bump: None,
         }
     }
 
@@ -66,7 +70,7 @@ impl Bsdf {
 
     /// `|wo·n_s| |wi·n_g| / (|wo·n_g| |wi·n_s|)` in importance mode, 1 in radiance mode.
     #[inline]
-    fn adjoint_correction(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
+    pub(super) fn adjoint_correction(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
         if mode == TransportMode::Radiance {
             return 1.0;
         }
@@ -108,7 +112,7 @@ impl Bsdf {
     /// from below its shading normal (the local frame is flipped), else 1: Mitsuba 3's
     /// `twosided`, which flips where `cos θ_i < 0` in the shading frame.
     #[inline]
-    fn reflection_side(&self, wo: Vec3) -> f32 {
+    pub(super) fn reflection_side(&self, wo: Vec3) -> f32 {
         if self.two_sided && wo.dot(self.frame.z) < 0.0 {
             -1.0
         } else {
@@ -149,6 +153,17 @@ impl Bsdf {
         (u_lobe, u)
     }
 
+    /// The bump at this point, compiled for the effects `F`: a bump map is a texture, so a
+    /// loop compiled without textures has none (and pays nothing for them).
+    #[inline(always)]
+    fn bump_with<F: Features>(&self) -> Option<&Bump> {
+        if F::TEXTURES {
+            self.bump.as_ref()
+        } else {
+            None
+        }
+    }
+
     /// True when every lobe is a delta distribution, compiled for the effects `F` (false
     /// without specular surfaces).
     #[inline]
@@ -177,6 +192,9 @@ impl Bsdf {
     /// [`Bsdf::eval`] compiled for the effects `F`.
     #[inline]
     pub fn eval_with<F: Features>(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+        if let Some(bump) = self.bump_with::<F>() {
+            return self.eval_bumped(bump, wo, wi, mode);
+        }
         if F::LAMBERTIAN {
             if let Lobes::Diffuse { kd } = self.lobes {
                 return match self.lambert_cosines(wo, wi) {
@@ -211,7 +229,7 @@ impl Bsdf {
         wi: Vec3,
         mode: TransportMode,
     ) -> (Rgb, Option<f32>) {
-        if F::LAMBERTIAN {
+        if F::LAMBERTIAN && self.bump_with::<F>().is_none() {
             if let Lobes::Diffuse { kd } = self.lobes {
                 return match self.lambert_cosines(wo, wi) {
                     Some((_, li)) => (
@@ -234,6 +252,9 @@ impl Bsdf {
     /// [`Bsdf::pdf`] compiled for the effects `F`.
     #[inline]
     pub fn pdf_with<F: Features>(&self, wo: Vec3, wi: Vec3) -> f32 {
+        if let Some(bump) = self.bump_with::<F>() {
+            return self.pdf_bumped(bump, wo, wi);
+        }
         if F::LAMBERTIAN {
             if let Lobes::Diffuse { .. } = self.lobes {
                 return match self.lambert_cosines(wo, wi) {
@@ -337,6 +358,9 @@ impl Bsdf {
         u: Vec2,
         mode: TransportMode,
     ) -> Option<BsdfSample> {
+        if let Some(bump) = self.bump_with::<F>() {
+            return self.sample_bumped(bump, wo, u_lobe, u, mode);
+        }
         if F::LAMBERTIAN {
             if let Lobes::Diffuse { kd } = self.lobes {
                 let side = self.reflection_side(wo);
@@ -401,52 +425,10 @@ impl Bsdf {
         if lo.z <= 0.0 {
             return None;
         }
-        let mirror = Vec3::new(-lo.x, -lo.y, lo.z);
         let li = match self.lobes {
-            Lobes::Diffuse { .. } => sample_cosine_hemisphere(u),
-            Lobes::Glossy {
-                exponent, p_glossy, ..
-            } => {
-                if u_lobe < p_glossy {
-                    blinn_sample(exponent, lo, u)?
-                } else {
-                    sample_cosine_hemisphere(u)
-                }
-            }
-            Lobes::RoughConductor { distr, .. } => reflect(lo, distr.sample_visible(lo, u)),
-            Lobes::Plastic {
-                ks,
-                eta,
-                spec_weight,
-                ..
-            } => {
-                let fi = fresnel_dielectric(lo.z, eta);
-                let ps = specular_probability(fi, spec_weight);
-                if u_lobe < ps {
-                    return self.delta_sample(wo, mirror, side, ks * (fi / ps), ps, mode, false);
-                }
-                sample_cosine_hemisphere(u)
-            }
-            Lobes::RoughPlastic {
-                spec_weight,
-                distr,
-                tables,
-                ..
-            } => {
-                let ps = specular_probability(1.0 - tables.transmittance(lo.z), spec_weight);
-                if u_lobe < ps {
-                    reflect(lo, distr.sample_visible(lo, u))
-                } else {
-                    sample_cosine_hemisphere(u)
-                }
-            }
-            Lobes::Mirror { r } => return self.delta_sample(wo, mirror, side, r, 1.0, mode, false),
-            Lobes::Conductor { ks, eta, k } => {
-                let w = ks * fresnel_conductor(lo.z, eta, k);
-                return self.delta_sample(wo, mirror, side, w, 1.0, mode, false);
-            }
             Lobes::ThinGlass { eta, ks, tf } => {
                 // Reflectance with the sheet's inner reflections summed: R + T²R/(1 - R²).
+                let mirror = Vec3::new(-lo.x, -lo.y, lo.z);
                 let r = fresnel_dielectric(lo.z, eta);
                 let r = if r < 1.0 { 2.0 * r / (1.0 + r) } else { 1.0 };
                 return if u_lobe < r {
@@ -458,7 +440,12 @@ impl Bsdf {
             Lobes::Glass { eta, tf_sqrt } => {
                 return self.sample_glass(wo, lo, side, eta, tf_sqrt, u_lobe, mode);
             }
-            Lobes::RoughGlass(_) => unreachable!("sampled above"),
+            _ => match self.lobes.sample_reflection_local(lo, u_lobe, u)? {
+                LocalSample::Smooth(li) => li,
+                LocalSample::Delta { li, weight, prob } => {
+                    return self.delta_sample(wo, li, side, weight, prob, mode, false);
+                }
+            },
         };
         if li.z <= 0.0 {
             return None;

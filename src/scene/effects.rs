@@ -84,7 +84,8 @@ impl Effects {
                     e.coloured_filtering |= t.max_element() - t.min_element() > 1e-4;
                 }
             }
-            e.textures |= m.kd_texture.is_some() || m.ks_texture.is_some();
+            // A bump map's height field is a texture too.
+            e.textures |= m.kd_texture.is_some() || m.ks_texture.is_some() || m.bump.is_some();
         }
         for l in lights {
             match l {

@@ -18,6 +18,7 @@ pub mod obj;
 pub mod texture;
 pub mod toml_file;
 
+use crate::bsdf::bump::{Bump, BumpMap, bumped_normal, uv_partials};
 use crate::bsdf::material::{Material, MaterialKind};
 use crate::bsdf::{Bsdf, Lobes, SurfaceLobes};
 use crate::features::{Features, General};
@@ -391,7 +392,34 @@ impl Scene {
             Some(t) => m.ks * self.textures[t as usize].lookup(hit.uv),
             None => m.ks,
         };
-        Bsdf::new(Lobes::new(m, kd, ks), hit.ns, hit.facing_ng())
+        let mut bsdf = Bsdf::new(Lobes::new(m, kd, ks), hit.ns, hit.facing_ng());
+        if F::TEXTURES
+            && let Some(map) = &m.bump
+        {
+            bsdf.bump = self.bump_at(map, hit, &bsdf);
+        }
+        bsdf
+    }
+
+    /// The bump of `map` at `hit` for the BSDF `bsdf` there ([`crate::bsdf::bump`]): the
+    /// height gradient at the hit's texture coordinates, the triangle's partials `∂p/∂u`,
+    /// `∂p/∂v` in Mitsuba's texture coordinates (`(u, 1 - v)` of the stored ones; the
+    /// importer stores barycentric ones on a mesh without any, as Mitsuba parametrises it).
+    /// `None` where the gradient is zero (the shading frame stays exactly the surface's) or
+    /// the parametrisation is degenerate (no normal to tilt to).
+    fn bump_at(&self, map: &BumpMap, hit: &SurfaceHit, bsdf: &Bsdf) -> Option<Bump> {
+        let grad = self.textures[map.texture as usize].luminance_gradient(hit.uv)? * map.scale;
+        if grad == Vec2::ZERO {
+            return None;
+        }
+        let g = &self.triangles[hit.triangle as usize];
+        let uv = self.shading[hit.triangle as usize]
+            .uvs
+            .map(|uv| uv.map(|t| Vec2::new(t.x, 1.0 - t.y)))
+            .unwrap_or([Vec2::ZERO, Vec2::X, Vec2::Y]);
+        let (dp_du, dp_dv) = uv_partials(g.e1, g.e2, uv);
+        let n = bumped_normal(hit.ns, bsdf.ng, dp_du, dp_dv, grad)?;
+        Some(Bump::new(map, &bsdf.frame, n))
     }
 
     /// The shadow ray from surface point `p` (normal `ng`) to `target` (`target_n` the normal

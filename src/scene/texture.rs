@@ -1,5 +1,6 @@
-//! Textures: images (`map_Kd`, Mitsuba `bitmap`) decoded once to linear RGB and looked up
-//! bilinearly with wrapping, and Mitsuba's procedural `checkerboard`.
+//! Textures: images (`map_Kd`, Mitsuba `bitmap`, sRGB-encoded or `raw`) looked up bilinearly
+//! with wrapping, and Mitsuba's procedural `checkerboard`; an image's luminance gradient, as
+//! a bump map reads it (Mitsuba's `eval_1_grad`).
 //!
 //! Texture coordinates arrive as stored on the triangles, OBJ convention (`v` up). A lookup
 //! first turns them into image convention `(u, 1 - v)` (`v` down, row 0 at the top; what
@@ -38,6 +39,8 @@ pub struct Texture {
     pub kind: TextureKind,
     /// Transform of the image-convention texture coordinates.
     pub to_uv: Option<Affine2>,
+    /// The bytes are the values themselves (`v / 255`, Mitsuba's `raw`), not sRGB-encoded.
+    pub raw: bool,
 }
 
 /// sRGB transfer function to linear.
@@ -56,6 +59,21 @@ fn srgb8_table() -> &'static [f32; 256] {
     static TABLE: std::sync::LazyLock<[f32; 256]> =
         std::sync::LazyLock::new(|| std::array::from_fn(|i| srgb_to_linear(i as f32 / 255.0)));
     &TABLE
+}
+
+/// The values of the 256 bytes read raw, `v / 255`.
+#[inline(always)]
+fn raw8_table() -> &'static [f32; 256] {
+    static TABLE: std::sync::LazyLock<[f32; 256]> =
+        std::sync::LazyLock::new(|| std::array::from_fn(|i| i as f32 / 255.0));
+    &TABLE
+}
+
+/// Mitsuba 3's luminance of a linear RGB colour (`mitsuba/core/spectrum.h`), which its
+/// textures' monochromatic lookups and gradients read.
+#[inline]
+fn mitsuba_luminance(c: Rgb) -> f32 {
+    0.212671 * c.x + 0.715160 * c.y + 0.072169 * c.z
 }
 
 /// The linear colour of an 8-bit sRGB texel.
@@ -120,6 +138,7 @@ impl Texture {
                 texels,
             },
             to_uv: None,
+            raw: false,
         }
     }
 
@@ -128,6 +147,7 @@ impl Texture {
         Texture {
             kind: TextureKind::Checkerboard { color0, color1 },
             to_uv: None,
+            raw: false,
         }
     }
 
@@ -139,13 +159,76 @@ impl Texture {
         }
     }
 
+    /// The decoding table of the texel bytes: sRGB, or the bytes' values when `raw`.
+    #[inline(always)]
+    fn table(&self) -> &'static [f32; 256] {
+        if self.raw {
+            raw8_table()
+        } else {
+            srgb8_table()
+        }
+    }
+
+    /// The texture coordinates a lookup at `uv` (`v` up, as stored on triangles) reads:
+    /// image convention `(u, 1 - v)`, then `to_uv`.
+    #[inline]
+    fn st(&self, uv: Vec2) -> Vec2 {
+        let uv = if uv.is_finite() { uv } else { Vec2::ZERO };
+        let st = Vec2::new(uv.x, 1.0 - uv.y);
+        match &self.to_uv {
+            Some(t) => t.transform_point2(st),
+            None => st,
+        }
+    }
+
+    /// The gradient of the texture's luminance with respect to Mitsuba's texture coordinates
+    /// `(u, 1 - v)` at `uv` (`v` up), as Mitsuba 3's `bitmap` computes it (`eval_1_grad`,
+    /// `src/textures/bitmap.cpp`): the bilinear interpolant's partials in texel units, `(1 -
+    /// f_y)(f₁₀ - f₀₀) + f_y (f₁₁ - f₀₁)` and `(1 - f_x)(f₀₁ - f₀₀) + f_x (f₁₁ - f₁₀)`, taken
+    /// through the transpose of `to_uv`'s linear part and then scaled by the resolution
+    /// `(width, height)` component by component (Mitsuba's order). A procedural texture has
+    /// none: `None`.
+    pub fn luminance_gradient(&self, uv: Vec2) -> Option<Vec2> {
+        let TextureKind::Bitmap {
+            width,
+            height,
+            texels,
+        } = &self.kind
+        else {
+            return None;
+        };
+        let st = self.st(uv);
+        let (w, h) = (*width as i32, *height as i32);
+        let x = st.x * w as f32 - 0.5;
+        let y = st.y * h as f32 - 0.5;
+        if !(x.is_finite() && y.is_finite()) {
+            return Some(Vec2::ZERO);
+        }
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let (x0, x1) = wrap_pair(x0 as i32, w);
+        let (y0, y1) = wrap_pair(y0 as i32, h);
+        let (row0, row1) = (y0 * *width as usize, y1 * *width as usize);
+        let lut = self.table();
+        let f = |i: usize| {
+            let [r, g, b, _] = texels[i];
+            mitsuba_luminance(Rgb::new(lut[r as usize], lut[g as usize], lut[b as usize]))
+        };
+        let (f00, f10, f01, f11) = (f(row0 + x0), f(row0 + x1), f(row1 + x0), f(row1 + x1));
+        let df_xy = Vec2::new(
+            (1.0 - fy) * (f10 - f00) + fy * (f11 - f01),
+            (1.0 - fx) * (f01 - f00) + fx * (f11 - f10),
+        );
+        let df_st = match &self.to_uv {
+            Some(t) => Vec2::new(t.matrix2.x_axis.dot(df_xy), t.matrix2.y_axis.dot(df_xy)),
+            None => df_xy,
+        };
+        Some(df_st * Vec2::new(*width as f32, *height as f32))
+    }
+
     /// Lookup at `uv` (`v` up, as stored on triangles); bilinear and wrapping for images.
     pub fn lookup(&self, uv: Vec2) -> Rgb {
-        let uv = if uv.is_finite() { uv } else { Vec2::ZERO };
-        let mut st = Vec2::new(uv.x, 1.0 - uv.y);
-        if let Some(t) = &self.to_uv {
-            st = t.transform_point2(st);
-        }
+        let st = self.st(uv);
         match &self.kind {
             TextureKind::Bitmap {
                 width,
@@ -168,7 +251,7 @@ impl Texture {
                 let (y0, y1) = wrap_pair(y0 as i32, h);
                 let row0 = y0 * *width as usize;
                 let row1 = y1 * *width as usize;
-                let lut = srgb8_table();
+                let lut = self.table();
                 let texel = |i: usize| {
                     let [r, g, b, _] = texels[i];
                     Rgb::new(lut[r as usize], lut[g as usize], lut[b as usize])

@@ -36,7 +36,7 @@ const NAMED_IOR: &[(&str, f32)] = &[
     ("diamond", 2.419),
 ];
 
-const BSDFS: &str = "diffuse, twosided, dielectric, thindielectric, roughdielectric, conductor, roughconductor, plastic, roughplastic";
+const BSDFS: &str = "diffuse, twosided, bumpmap, dielectric, thindielectric, roughdielectric, conductor, roughconductor, plastic, roughplastic";
 
 impl<'a, 'd> Builder<'a, 'd> {
     fn ior(&self, p: &Props<'a, 'd>, name: &str, default: f32) -> Result<f32> {
@@ -202,6 +202,11 @@ impl<'a, 'd> Builder<'a, 'd> {
                     }
                     [] => return Err(self.doc.err(node, "twosided needs a nested <bsdf>")),
                 }
+            }
+            "bumpmap" => {
+                let mut bumped = self.bumpmap(node, &p)?;
+                bumped.name = m.name;
+                m = bumped;
             }
             "diffuse" => {
                 m.kind = MaterialKind::Diffuse;

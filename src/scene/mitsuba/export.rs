@@ -310,8 +310,13 @@ fn colour_or_texture(
                 path: path.clone(),
                 message: e.to_string(),
             })?;
+            let raw = if texture.raw {
+                "<boolean name=\"raw\" value=\"true\"/>"
+            } else {
+                ""
+            };
             format!(
-                "<texture name=\"{name}\" type=\"bitmap\"><string name=\"filename\" value=\"{file}\"/>{transform}</texture>"
+                "<texture name=\"{name}\" type=\"bitmap\"><string name=\"filename\" value=\"{file}\"/>{raw}{transform}</texture>"
             )
         }
     })
@@ -419,6 +424,23 @@ fn bsdf_xml(
                 rgb("specular_transmittance", st)
             ));
         }
+    };
+    // A bump map wraps the BSDF (and the `twosided` nested in it); the material's own
+    // `two_sided` wraps the bump map.
+    let inner = match &m.bump {
+        Some(b) => {
+            let nested = if b.nested_two_sided {
+                format!("<bsdf type=\"twosided\">{inner}</bsdf>")
+            } else {
+                inner
+            };
+            let map = colour_or_texture(scene, "map", Rgb::ONE, Some(b.texture), tf, out)?;
+            format!(
+                "<bsdf type=\"bumpmap\">{map}<float name=\"scale\" value=\"{:?}\"/><boolean name=\"flip_invalid_normals\" value=\"{}\"/><boolean name=\"use_shadowing_function\" value=\"{}\"/>{nested}</bsdf>",
+                b.scale, b.flip_invalid_normals, b.shadowing
+            )
+        }
+        None => inner,
     };
     Ok(if m.two_sided {
         format!("  <bsdf type=\"twosided\" id=\"{id}\">{inner}</bsdf>")

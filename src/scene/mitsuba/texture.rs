@@ -77,15 +77,10 @@ impl<'a, 'd> Builder<'a, 'd> {
                         "repeat",
                     )?;
                 }
-                if p.boolean("raw")? == Some(true) {
-                    self.doc.unsupported(
-                        node,
-                        "raw = true",
-                        "sRGB-encoded 8-bit images",
-                        "sRGB decoding",
-                    )?;
-                }
-                self.files.texture(&self.doc.file(&file))?
+                let raw = p.boolean("raw")?.unwrap_or(false);
+                let mut tex = self.files.texture(&self.doc.file(&file))?;
+                tex.raw = raw;
+                tex
             }
             "checkerboard" => {
                 let c0 = p.rgb("color0")?.unwrap_or(Rgb::splat(0.4));

@@ -210,6 +210,26 @@ impl<'a, 'd> Props<'a, 'd> {
         n
     }
 
+    /// The named `<texture>` elements (whatever their names), marked as read: a BSDF adapter
+    /// such as `bumpmap` takes its nested texture under any name, as Mitsuba does.
+    pub fn named_textures(&self) -> Vec<Node<'a, 'a>> {
+        let mut found: Vec<(&String, Node<'a, 'a>)> = self
+            .named
+            .iter()
+            .filter(|(_, n)| n.has_tag_name("texture"))
+            .map(|(k, n)| (k, *n))
+            .collect();
+        found.sort_by_key(|(_, n)| n.range().start);
+        let mut used = self.used.borrow_mut();
+        found
+            .into_iter()
+            .map(|(k, n)| {
+                used.insert(k.clone());
+                n
+            })
+            .collect()
+    }
+
     /// Marks properties as read that footprint accepts and ignores (they do not change the
     /// expected image, e.g. an output file format).
     pub fn ignore(&self, names: &[&str]) {
