@@ -326,10 +326,10 @@ fn errors_name_the_element_line_and_what_is_supported() {
     // Unknown shape, unknown property, undefined parameter, dangling reference.
     let e = load_err(
         "shape",
-        "<shape type=\"ply\"><string name=\"filename\" value=\"x.ply\"/></shape>",
+        "<shape type=\"bsplinecurve\"><string name=\"filename\" value=\"x.txt\"/></shape>",
     );
     assert!(
-        e.contains("shape 'ply'") && e.contains("obj, rectangle"),
+        e.contains("shape 'bsplinecurve'") && e.contains("obj, ply, serialized, rectangle"),
         "{e}"
     );
     let e = load_err(
@@ -362,12 +362,24 @@ fn errors_name_the_element_line_and_what_is_supported() {
     );
     let e = load(&d, &[], false).err().unwrap().to_string();
     assert!(e.contains("scene.xml:3:"), "{e}");
-    // A missing OBJ names the file.
+    // A missing mesh file names the file.
+    for (kind, file) in [
+        ("obj", "nothere.obj"),
+        ("ply", "nothere.ply"),
+        ("serialized", "nothere.serialized"),
+    ] {
+        let e = load_err(
+            kind,
+            &format!("<shape type=\"{kind}\"><string name=\"filename\" value=\"{file}\"/></shape>"),
+        );
+        assert!(e.contains(file), "{e}");
+    }
+    // A negative shape_index, as Mitsuba.
     let e = load_err(
-        "obj",
-        "<shape type=\"obj\"><string name=\"filename\" value=\"nothere.obj\"/></shape>",
+        "index",
+        "<shape type=\"serialized\"><string name=\"filename\" value=\"m.serialized\"/><integer name=\"shape_index\" value=\"-1\"/></shape>",
     );
-    assert!(e.contains("nothere.obj"), "{e}");
+    assert!(e.contains("'shape_index' must be a non-negative"), "{e}");
     // No light: the scene's own error.
     let d = dir_with(
         "dark",
