@@ -45,6 +45,7 @@ BUNDLED = {
     "glass": dict(resx=48, resy=48, rfilter="box", max_depth=4, batches=32, spp=512),
     "panes": dict(resx=48, resy=48, rfilter="box", max_depth=8, batches=32, spp=512),
     "slit": dict(resx=64, resy=48, rfilter="box", max_depth=10, batches=32, spp=1024),
+    "meshes": dict(resx=48, resy=48, rfilter="box", max_depth=4, batches=32, spp=256),
 }
 
 # The public scenes (../shared/scenes-ext): parameters of the check.
@@ -177,7 +178,10 @@ def cmd_references(args):
         stderr = (imgs.std(axis=0, ddof=1) / math.sqrt(imgs.shape[0])).astype(np.float32)
         mi.Bitmap(mean).write(os.path.join(REF_DIR, f"{name}-mean.exr"))
         mi.Bitmap(stderr).write(os.path.join(REF_DIR, f"{name}-stderr.exr"))
-        meta["scenes"][name] = dict(p, seconds=round(secs, 1), mean=mean.mean(axis=(0, 1)).tolist())
+        # The image mean's standard error, from the spread of the batches' image means.
+        mean_stderr = imgs.mean(axis=(1, 2)).std(axis=0, ddof=1) / math.sqrt(imgs.shape[0])
+        meta["scenes"][name] = dict(p, seconds=round(secs, 1), mean=mean.mean(axis=(0, 1)).tolist(),
+                                    mean_stderr=mean_stderr.tolist())
         print(f"{name}: {p['batches']} x {p['spp']} spp at {p['resx']}x{p['resy']} in {secs:.1f} s, mean {mean.mean(axis=(0, 1))}")
     with open(os.path.join(REF_DIR, "references.json"), "w") as f:
         json.dump(meta, f, indent=2)

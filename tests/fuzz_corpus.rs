@@ -34,6 +34,8 @@ fn file_names(target: &str) -> &'static [&'static str] {
         "toml_scene" => &["scene.toml", "mesh.obj", "mesh.mtl"],
         "mitsuba_scene" => fuzz::XML_FILES,
         "obj" => &["mesh.obj", "mesh.mtl", "texture.png", "scene.toml"],
+        "ply" => &[fuzz::PLY_FILE],
+        "serialized" => &[fuzz::SERIALIZED_FILE],
         "maps_file" => &["maps.fpm"],
         "shard_merge" => &[
             "shard0.exr",

@@ -5,6 +5,7 @@
 use super::builder::Builder;
 use super::meshes::{self, MeshData, MeshSource};
 use super::xml::{Doc, Props};
+use crate::Rgb;
 use crate::bsdf::material::Material;
 use crate::error::Result;
 use crate::scene::geometry::{TriangleGeom, TriangleShading};
@@ -112,15 +113,7 @@ impl<'a, 'd> Builder<'a, 'd> {
                     * Mat4::from_translation(p0)
                     * Mat4::from_mat3(Mat3::from_cols(s, t, axis))
                     * Mat4::from_scale(Vec3::new(radius, radius, length));
-                let mut m = meshes::cylinder(meshes::CYLINDER_SEGMENTS);
-                // Mitsuba's cylinder normal is the cross product of the transformed
-                // tangents: inward under a mirroring transform, as the winding is.
-                if Mat3::from_mat4(to_world).determinant() < 0.0 {
-                    for n in m.normals.iter_mut().flatten() {
-                        *n = -*n;
-                    }
-                }
-                m
+                meshes::cylinder(meshes::CYLINDER_SEGMENTS)
             }
             other => {
                 return self.doc.unsupported(
@@ -175,7 +168,9 @@ impl<'a, 'd> Builder<'a, 'd> {
                 }
             }
         }
-        // Mitsuba's default BSDF: one-sided diffuse of reflectance 0.5.
+        // Mitsuba's default BSDF: one-sided diffuse of reflectance 0.5, and 0 on a shape
+        // that emits (Mitsuba 3's `Shape` constructor): a light without a BSDF reflects
+        // nothing.
         let (bsdf_node, mut m) = match material {
             Some((id, m)) => (Some(id), m),
             None => (
@@ -183,6 +178,11 @@ impl<'a, 'd> Builder<'a, 'd> {
                 Material {
                     name: "default".into(),
                     two_sided: false,
+                    kd: if radiance.is_some() {
+                        Rgb::ZERO
+                    } else {
+                        Material::default().kd
+                    },
                     ..Material::default()
                 },
             ),
@@ -194,9 +194,11 @@ impl<'a, 'd> Builder<'a, 'd> {
             }
         }
         let material = self.material_id(bsdf_node, m);
-        // Mitsuba's rectangle, disk and sphere take their front from the transformed normal
-        // (the inverse transpose), not from the winding, which a mirroring transform reverses.
-        let primitive = matches!(kind.as_str(), "rectangle" | "disk" | "sphere");
+        // Mitsuba's rectangle, disk, sphere and cylinder take their front from the
+        // transformed normal (the inverse transpose), not from the winding, which a
+        // mirroring transform reverses (checked with Mitsuba 3.9.1 for the disk and the
+        // cylinder: a cylinder mirrored in x still faces out).
+        let primitive = matches!(kind.as_str(), "rectangle" | "disk" | "sphere" | "cylinder");
         let mirrored = primitive && Mat3::from_mat4(to_world).determinant() < 0.0;
         self.push_mesh(
             &mesh,
