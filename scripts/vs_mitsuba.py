@@ -52,6 +52,7 @@ BUNDLED = {
     # `ptracer` and `path` differ there (tests/mitsuba.rs compares footprint's light tracer).
     "bumpmap-ptracer": dict(scene="bumpmap", integrator="ptracer", resx=32, resy=32, rfilter="box", max_depth=3,
                             batches=32, spp=512),
+    "meshes": dict(resx=48, resy=48, rfilter="box", max_depth=4, batches=32, spp=256),
 }
 
 # The public scenes kept in the repository (scenes/public/<name>/scene.xml, unchanged but for
@@ -207,7 +208,10 @@ def cmd_references(args):
         os.makedirs(os.path.dirname(os.path.join(REF_DIR, name)), exist_ok=True)
         mi.Bitmap(mean).write(os.path.join(REF_DIR, f"{name}-mean.exr"))
         mi.Bitmap(stderr).write(os.path.join(REF_DIR, f"{name}-stderr.exr"))
-        meta["scenes"][name] = dict(p, seconds=round(secs, 1), mean=mean.mean(axis=(0, 1)).tolist())
+        # The image mean's standard error, from the spread of the batches' image means.
+        mean_stderr = imgs.mean(axis=(1, 2)).std(axis=0, ddof=1) / math.sqrt(imgs.shape[0])
+        meta["scenes"][name] = dict(p, seconds=round(secs, 1), mean=mean.mean(axis=(0, 1)).tolist(),
+                                    mean_stderr=mean_stderr.tolist())
         print(f"{name}: {p['batches']} x {p['spp']} spp, -D {defines}, in {secs:.1f} s, mean {mean.mean(axis=(0, 1))}")
     with open(os.path.join(REF_DIR, "references.json"), "w") as f:
         json.dump(meta, f, indent=2)

@@ -34,6 +34,8 @@ fn file_names(target: &str) -> &'static [&'static str] {
         "toml_scene" => &["scene.toml", "mesh.obj", "mesh.mtl"],
         "mitsuba_scene" => fuzz::XML_FILES,
         "obj" => &["mesh.obj", "mesh.mtl", "texture.png", "scene.toml"],
+        "ply" => &[fuzz::PLY_FILE],
+        "serialized" => &[fuzz::SERIALIZED_FILE],
         "maps_file" => &["maps.fpm"],
         "shard_merge" => &[
             "shard0.exr",
@@ -385,6 +387,89 @@ fn a_hash_that_is_not_ascii_is_shown_without_a_panic() {
         &[
             "maps.fpm was made for another scene",
             "aÈÈÈÈÈÈÈÈÈÈÈÈÈÈÈ there",
+        ],
+    );
+}
+
+/// `data` as a zlib stream of one stored (uncompressed) deflate block (RFC 1950, 1951): a
+/// `.serialized` mesh written by hand, with no compressor.
+fn zlib_stored(data: &[u8]) -> Vec<u8> {
+    assert!(data.len() < 65536);
+    let mut out = vec![0x78, 0x01, 0x01];
+    let len = data.len() as u16;
+    out.extend_from_slice(&len.to_le_bytes());
+    out.extend_from_slice(&(!len).to_le_bytes());
+    out.extend_from_slice(data);
+    let (mut a, mut b) = (1u32, 0u32);
+    for &x in data {
+        a = (a + x as u32) % 65521;
+        b = (b + a) % 65521;
+    }
+    out.extend_from_slice(&((b << 16) | a).to_be_bytes());
+    out
+}
+
+/// Mesh files whose counts lie: a PLY whose header promises a billion faces and four billion
+/// vertices a face, and `.serialized` meshes that say 2³¹ vertices and 2⁴⁰ triangles, or
+/// more vertices than they hold, in files of a few hundred bytes: refused at once, naming the
+/// file, with nothing reserved for the counts.
+#[test]
+fn mesh_files_with_lying_counts_are_refused() {
+    let seed = std::fs::read(fuzz_dir().join("seeds/ply/quads-ascii")).unwrap();
+    let text = String::from_utf8(seed).unwrap();
+    expect_err(
+        "ply",
+        text.replace("element face 3", "element face 1000000000")
+            .as_bytes(),
+        &["mesh.ply", "element 'face', record 3 of 1000000000"],
+    );
+    expect_err(
+        "ply",
+        text.replace("4 0 1 2 3", "4294967295 0 1 2 3").as_bytes(),
+        &["mesh.ply", "'4294967295' is not a uchar"],
+    );
+    expect_err(
+        "ply",
+        text.replace("3 0 1 6", "3 0 1 7").as_bytes(),
+        &[
+            "mesh.ply",
+            "face 2 refers to vertex 7, but the file has 7 vertices",
+        ],
+    );
+    // Version 4: flags (single precision, no normals), name, counts, one triangle.
+    let mesh = |vertices: u64, triangles: u64| {
+        let mut s = 0x1000u32.to_le_bytes().to_vec();
+        s.extend_from_slice(b"m\0");
+        s.extend_from_slice(&vertices.to_le_bytes());
+        s.extend_from_slice(&triangles.to_le_bytes());
+        for v in [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0] {
+            s.extend_from_slice(&v.to_le_bytes());
+        }
+        for i in [0u32, 1, 2] {
+            s.extend_from_slice(&i.to_le_bytes());
+        }
+        let mut file = vec![0, 0x1c, 0x04, 4, 0];
+        file.extend_from_slice(&zlib_stored(&s));
+        file
+    };
+    assert_eq!(harness("serialized")(&mesh(3, 1)), Ok(()));
+    expect_err(
+        "serialized",
+        &mesh(1 << 31, 1 << 40),
+        &["mesh.serialized", "more than the"],
+    );
+    expect_err(
+        "serialized",
+        &mesh(4, 1),
+        &["mesh.serialized", "the data ends within the triangles"],
+    );
+    // Two vertices said, three written: the third's 1.0 (0x3f800000) is read as an index.
+    expect_err(
+        "serialized",
+        &mesh(2, 1),
+        &[
+            "mesh.serialized",
+            "triangle 0 refers to vertex 1065353216, but the mesh has 2 vertices",
         ],
     );
 }

@@ -405,10 +405,10 @@ fn errors_name_the_element_line_and_what_is_supported() {
     // Unknown shape, unknown property, undefined parameter, dangling reference.
     let e = load_err(
         "shape",
-        "<shape type=\"ply\"><string name=\"filename\" value=\"x.ply\"/></shape>",
+        "<shape type=\"bsplinecurve\"><string name=\"filename\" value=\"x.txt\"/></shape>",
     );
     assert!(
-        e.contains("shape 'ply'") && e.contains("obj, rectangle"),
+        e.contains("shape 'bsplinecurve'") && e.contains("obj, ply, serialized, rectangle"),
         "{e}"
     );
     let e = load_err(
@@ -441,12 +441,24 @@ fn errors_name_the_element_line_and_what_is_supported() {
     );
     let e = load(&d, &[], false).err().unwrap().to_string();
     assert!(e.contains("scene.xml:3:"), "{e}");
-    // A missing OBJ names the file.
+    // A missing mesh file names the file.
+    for (kind, file) in [
+        ("obj", "nothere.obj"),
+        ("ply", "nothere.ply"),
+        ("serialized", "nothere.serialized"),
+    ] {
+        let e = load_err(
+            kind,
+            &format!("<shape type=\"{kind}\"><string name=\"filename\" value=\"{file}\"/></shape>"),
+        );
+        assert!(e.contains(file), "{e}");
+    }
+    // A negative shape_index, as Mitsuba.
     let e = load_err(
-        "obj",
-        "<shape type=\"obj\"><string name=\"filename\" value=\"nothere.obj\"/></shape>",
+        "index",
+        "<shape type=\"serialized\"><string name=\"filename\" value=\"m.serialized\"/><integer name=\"shape_index\" value=\"-1\"/></shape>",
     );
-    assert!(e.contains("nothere.obj"), "{e}");
+    assert!(e.contains("'shape_index' must be a non-negative"), "{e}");
     // No light: the scene's own error.
     let d = dir_with(
         "dark",
@@ -624,5 +636,302 @@ fn pixel_filters_sample_what_they_splat() {
                 "{kind:?} pixel ({px},{py}): chi2 {chi2:.1} over {bins} bins, p = {p:.2e}"
             );
         }
+    }
+}
+
+/// The triangles of the shapes whose default-material diffuse reflectance is `kd` (each shape
+/// of a test scene gets its own), with their shading.
+fn shape_triangles(
+    s: &Scene,
+    kd: f32,
+) -> Vec<(
+    footprint::scene::geometry::TriangleGeom,
+    footprint::scene::geometry::TriangleShading,
+)> {
+    s.triangles
+        .iter()
+        .zip(s.shading.iter())
+        .filter(|(_, sh)| s.materials[sh.material as usize].kd.x == kd)
+        .map(|(t, sh)| (*t, *sh))
+        .collect()
+}
+
+/// The torus of `scenes/meshes` from its OBJ, from its PLY (which Mitsuba 3 wrote from the
+/// OBJ, texture coordinates flipped as Mitsuba reads OBJ's) and from mesh 1 of
+/// `meshes.serialized` (double precision) gives the same triangles, shading normals and
+/// texture coordinates, under the same transform. The OBJ's six decimals bound the
+/// differences.
+#[test]
+fn the_same_mesh_from_obj_ply_and_serialized_gives_the_same_triangles() {
+    let dir = common::scenes_dir().join("meshes");
+    let load_shape = |kind: &str, file: &str, extra: &str| {
+        let body = format!(
+            r#"<shape type="{kind}"><string name="filename" value="{}"/>{extra}
+    <transform name="to_world"><rotate x="1" angle="30"/><translate y="0.5" z="-1"/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.25"/></bsdf></shape>"#,
+            dir.join(file).display()
+        );
+        let d = dir_with(&format!("same-{kind}"), &[("scene.xml", &scene_xml(&body))]);
+        shape_triangles(&load(&d, &[], false).unwrap(), 0.25)
+    };
+    let obj = load_shape("obj", "torus.obj", "");
+    assert_eq!(obj.len(), 576);
+    for (kind, file, extra) in [
+        ("ply", "torus.ply", ""),
+        (
+            "serialized",
+            "meshes.serialized",
+            r#"<integer name="shape_index" value="1"/>"#,
+        ),
+    ] {
+        let other = load_shape(kind, file, extra);
+        assert_eq!(other.len(), obj.len(), "{kind}");
+        let centroid = |t: &footprint::scene::geometry::TriangleGeom| t.p0 + (t.e1 + t.e2) / 3.0;
+        for (t, sh) in &obj {
+            // The same triangle: the one whose centroid is nearest (the BVH orders them).
+            let (u, ush) = other
+                .iter()
+                .min_by(|a, b| {
+                    let da = (centroid(&a.0) - centroid(t)).length();
+                    let db = (centroid(&b.0) - centroid(t)).length();
+                    da.total_cmp(&db)
+                })
+                .unwrap();
+            let close = |a: Vec3, b: Vec3, tol: f32| (a - b).length() < tol;
+            assert!(
+                close(t.p0, u.p0, 1e-5) && close(t.e1, u.e1, 1e-5) && close(t.e2, u.e2, 1e-5),
+                "{kind}: triangle {t:?} against {u:?}"
+            );
+            let (n, un) = (sh.normals.unwrap(), ush.normals.unwrap());
+            let (uv, uuv) = (sh.uvs.unwrap(), ush.uvs.unwrap());
+            for k in 0..3 {
+                assert!(
+                    close(n[k], un[k], 1e-4),
+                    "{kind}: normal {:?} against {:?}",
+                    n[k],
+                    un[k]
+                );
+                assert!(
+                    (uv[k] - uuv[k]).length() < 1e-5,
+                    "{kind}: uv {:?} against {:?}",
+                    uv[k],
+                    uuv[k]
+                );
+            }
+        }
+    }
+}
+
+/// A PLY shape's options: `flip_tex_coords` flips v, `face_normals` drops the shading
+/// normals, `flip_normals` turns the normals and the winding around; and mesh 0 of
+/// `meshes.serialized`, which has no normals, gets Mitsuba's angle-weighted ones.
+#[test]
+fn ply_options_and_computed_normals() {
+    let dir = common::scenes_dir().join("meshes");
+    let ply = dir.join("torus.ply");
+    let body = format!(
+        r#"<shape type="ply"><string name="filename" value="{0}"/>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.1"/></bsdf></shape>
+  <shape type="ply"><string name="filename" value="{0}"/><boolean name="flip_tex_coords" value="true"/>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.2"/></bsdf></shape>
+  <shape type="ply"><string name="filename" value="{0}"/><boolean name="face_normals" value="true"/>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.3"/></bsdf></shape>
+  <shape type="ply"><string name="filename" value="{0}"/><boolean name="flip_normals" value="true"/>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.4"/></bsdf></shape>
+  <shape type="serialized"><string name="filename" value="{1}"/>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf></shape>"#,
+        ply.display(),
+        dir.join("meshes.serialized").display()
+    );
+    let d = dir_with("ply-options", &[("scene.xml", &scene_xml(&body))]);
+    let s = load(&d, &[], false).unwrap();
+    let key = |t: &footprint::scene::geometry::TriangleGeom| {
+        let c = t.p0 + (t.e1 + t.e2) / 3.0;
+        [c.x, c.y, c.z].map(|x| (x * 1e4).round() as i64)
+    };
+    let by_centroid = |kd: f32| {
+        let mut v = shape_triangles(&s, kd);
+        v.sort_by_key(|(t, _)| key(t));
+        v
+    };
+    let plain = by_centroid(0.1);
+    assert_eq!(plain.len(), 576);
+    for ((t, sh), (_, flipped_uv)) in plain.iter().zip(&by_centroid(0.2)) {
+        let (a, b) = (sh.uvs.unwrap(), flipped_uv.uvs.unwrap());
+        for k in 0..3 {
+            assert!((a[k].x - b[k].x).abs() < 1e-6 && (a[k].y - (1.0 - b[k].y)).abs() < 1e-6);
+        }
+        // The torus is smooth: the shading normals lie on the winding's side.
+        let ng = t.cross();
+        assert!(sh.normals.unwrap().iter().all(|n| n.dot(ng) > 0.0));
+    }
+    assert!(by_centroid(0.3).iter().all(|(_, sh)| sh.normals.is_none()));
+    for ((t, sh), (u, flipped)) in plain.iter().zip(&by_centroid(0.4)) {
+        assert!(
+            t.cross().dot(u.cross()) < 0.0,
+            "flip_normals turns the winding"
+        );
+        let (a, b) = (sh.normals.unwrap(), flipped.normals.unwrap());
+        // The winding's reversal swaps the first and last vertex.
+        for (k, j) in [(0, 2), (1, 1), (2, 0)] {
+            assert!(
+                (a[k] + b[j]).length() < 1e-6,
+                "{:?} against {:?}",
+                a[k],
+                b[j]
+            );
+        }
+    }
+    // The octahedron: each vertex's normal is its own direction (four faces, equal angles).
+    let octahedron = shape_triangles(&s, 0.6);
+    assert_eq!(octahedron.len(), 8);
+    for (t, sh) in &octahedron {
+        let p = [t.p0, t.p0 + t.e1, t.p0 + t.e2];
+        for (p, n) in p.iter().zip(sh.normals.unwrap()) {
+            assert!((p.normalize() - n).length() < 1e-5, "{p:?}: {n:?}");
+        }
+    }
+}
+
+/// `disk` and `cylinder`: areas within 0.1% of the exact shapes', normals out of the cylinder
+/// (its axis from `p0` to `p1`) and along the disk's transformed +z; `flip_normals` turns the
+/// cylinder's normals in and a mirroring transform does not (as in Mitsuba 3.9.1); a
+/// cylinder of no radius or no length is an error.
+#[test]
+fn disk_and_cylinder_shapes() {
+    let cylinder = |kd: f32, extra: &str| {
+        format!(
+            r#"<shape type="cylinder"><point name="p0" x="1" y="-1" z="0"/><point name="p1" x="1" y="1" z="0"/>
+    <float name="radius" value="0.5"/>{extra}<bsdf type="diffuse"><rgb name="reflectance" value="{kd}"/></bsdf></shape>"#
+        )
+    };
+    let body = [
+        cylinder(0.1, ""),
+        cylinder(0.2, r#"<boolean name="flip_normals" value="true"/>"#),
+        // Mirrored in x about the origin: the axis at x = -1.
+        cylinder(0.3, r#"<transform name="to_world"><scale x="-1"/></transform>"#),
+        r#"<shape type="disk"><transform name="to_world"><scale value="2"/><rotate y="1" angle="90"/><translate z="-3"/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.4"/></bsdf></shape>"#
+            .to_string(),
+    ]
+    .join("\n");
+    let d = dir_with("disk-cylinder", &[("scene.xml", &scene_xml(&body))]);
+    let s = load(&d, &[], false).unwrap();
+    let pi = std::f32::consts::PI;
+    for (kd, axis_x, outward) in [(0.1, 1.0, 1.0), (0.2, 1.0, -1.0), (0.3, -1.0, 1.0)] {
+        let tris = shape_triangles(&s, kd);
+        let area: f32 = tris.iter().map(|(t, _)| t.area()).sum();
+        let exact = 2.0 * pi * 0.5 * 2.0;
+        assert!((area / exact - 1.0).abs() < 1e-3, "{kd}: area {area}");
+        for (t, sh) in &tris {
+            let c = t.p0 + (t.e1 + t.e2) / 3.0;
+            let radial = Vec3::new(c.x - axis_x, 0.0, c.z).normalize();
+            assert!(
+                t.cross().normalize().dot(radial) * outward > 0.99,
+                "{kd}: winding"
+            );
+            for (k, n) in sh.normals.unwrap().iter().enumerate() {
+                let p = [t.p0, t.p0 + t.e1, t.p0 + t.e2][k];
+                let r = Vec3::new(p.x - axis_x, 0.0, p.z);
+                assert!((r.length() - 0.5).abs() < 1e-5);
+                assert!(
+                    (*n - r.normalize() * outward).length() < 1e-5,
+                    "{kd}: {n:?}"
+                );
+            }
+        }
+    }
+    // The disk of radius 2 turned to face +x.
+    let disk = shape_triangles(&s, 0.4);
+    let area: f32 = disk.iter().map(|(t, _)| t.area()).sum();
+    assert!((area / (4.0 * pi) - 1.0).abs() < 1e-3, "disk area {area}");
+    assert!(disk.iter().all(|(t, sh)| {
+        t.cross().normalize().dot(Vec3::X) > 0.9999
+            && sh
+                .normals
+                .unwrap()
+                .iter()
+                .all(|n| (*n - Vec3::X).length() < 1e-5)
+    }));
+    for (what, shape) in [
+        (
+            "radius",
+            r#"<shape type="cylinder"><float name="radius" value="0"/></shape>"#,
+        ),
+        (
+            "length",
+            r#"<shape type="cylinder"><point name="p1" x="0" y="0" z="0"/></shape>"#,
+        ),
+    ] {
+        let e = load_err(&format!("cylinder-{what}"), shape);
+        assert!(
+            e.contains("cylinder needs a positive radius and p0 != p1"),
+            "{e}"
+        );
+    }
+}
+
+/// Where a ray meets a disk and a cylinder, footprint's tessellation gives Mitsuba's normal and
+/// texture coordinates (values printed by Mitsuba 3.9.1 `scalar_rgb` for these rays: the
+/// cylinder's `u = φ / 2π` with φ from Mitsuba's frame about the axis, `v` along it; the
+/// disk's `(r, φ / 2π)`), also under a mirroring transform, to the tessellation's accuracy.
+#[test]
+fn disk_and_cylinder_hits_match_mitsuba() {
+    // (to_world, ray origin and direction, Mitsuba's normal and uv) for the cylinder from
+    // (1, -1, 0) to (1, 1, 0.3) of radius 0.5 and for the unit disk moved to z = -2.
+    let cylinder = [
+        (
+            "",
+            Vec3::new(3.0, 0.1, 0.2),
+            Vec3::NEG_X,
+            Vec3::new(0.997601, -0.010269, 0.0684598),
+            Vec2::new(0.988974, 0.552567),
+        ),
+        (
+            r#"<scale x="-1"/>"#,
+            Vec3::new(-3.0, 0.1, 0.2),
+            Vec3::X,
+            Vec3::new(-0.997601, -0.010269, 0.0684598),
+            Vec2::new(0.988974, 0.552567),
+        ),
+    ];
+    for (transform, o, dir, n, uv) in cylinder {
+        let body = format!(
+            r#"<shape type="cylinder"><point name="p0" x="1" y="-1" z="0"/><point name="p1" x="1" y="1" z="0.3"/>
+    <float name="radius" value="0.5"/><transform name="to_world">{transform}</transform></shape>"#
+        );
+        let d = dir_with("cylinder-hit", &[("scene.xml", &scene_xml(&body))]);
+        let s = load(&d, &[], false).unwrap();
+        let hit = s.intersect(o, dir, 10.0).expect("the cylinder is hit");
+        assert!(
+            (hit.ns - n).length() < 2e-3,
+            "{transform}: normal {:?}",
+            hit.ns
+        );
+        assert!(hit.ng.dot(n) > 0.99, "{transform}: the winding faces out");
+        let mitsuba_uv = Vec2::new(hit.uv.x, 1.0 - hit.uv.y);
+        assert!(
+            (mitsuba_uv - uv).length() < 2e-3,
+            "{transform}: uv {mitsuba_uv:?}"
+        );
+    }
+    for (transform, uv) in [
+        ("", Vec2::new(0.5, 0.147584)),
+        (r#"<scale x="-1"/>"#, Vec2::new(0.5, 0.352416)),
+    ] {
+        let body = format!(
+            r#"<shape type="disk"><transform name="to_world"><translate z="-2"/>{transform}</transform></shape>"#
+        );
+        let d = dir_with("disk-hit", &[("scene.xml", &scene_xml(&body))]);
+        let s = load(&d, &[], false).unwrap();
+        let hit = s
+            .intersect(Vec3::new(0.3, 0.4, 0.0), Vec3::NEG_Z, 10.0)
+            .expect("the disk is hit");
+        assert!((hit.ns - Vec3::Z).length() < 1e-5 && hit.ng.dot(Vec3::Z) > 0.9999);
+        let mitsuba_uv = Vec2::new(hit.uv.x, 1.0 - hit.uv.y);
+        assert!(
+            (mitsuba_uv - uv).length() < 2e-3,
+            "{transform}: uv {mitsuba_uv:?}"
+        );
     }
 }

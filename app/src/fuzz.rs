@@ -9,7 +9,7 @@
 //!
 //! An input may hold several files, separated by [`SEPARATOR`] lines: a scene and the
 //! meshes it names. Each target says what its files are called ([`TOML_FILES`],
-//! [`XML_FILES`], [`OBJ_FILES`], [`SHARD_FILES`]).
+//! [`XML_FILES`], [`OBJ_FILES`], [`PLY_FILE`], [`SERIALIZED_FILE`], [`SHARD_FILES`]).
 
 use std::path::{Path, PathBuf};
 
@@ -22,6 +22,10 @@ pub const TOML_FILES: &[&str] = &["scene.toml", "mesh.obj", "mesh.mtl"];
 pub const XML_FILES: &[&str] = &["scene.xml", "mesh.obj", "texture.png"];
 /// An OBJ file, its MTL and a texture the MTL may name, read through a fixed TOML scene.
 pub const OBJ_FILES: &[&str] = &["mesh.obj", "mesh.mtl", "texture.png"];
+/// A PLY mesh, read through a fixed Mitsuba scene.
+pub const PLY_FILE: &str = "mesh.ply";
+/// A `.serialized` mesh file, read through a fixed Mitsuba scene.
+pub const SERIALIZED_FILE: &str = "mesh.serialized";
 /// Shard images of one merge (at most this many).
 pub const SHARD_FILES: &[&str] = &["shard0.exr", "shard1.exr", "shard2.exr", "shard3.exr"];
 
@@ -105,6 +109,49 @@ pub fn obj(data: &[u8]) -> Result<(), String> {
     scene(&d.join("scene.toml"))
 }
 
+/// A Mitsuba scene of an 8x8 film, an area light and `shape`, the mesh a target reads.
+fn mesh_scene(shape: &str) -> String {
+    format!(
+        r#"<scene version="3.0.0">
+  <sensor type="perspective">
+    <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+  </sensor>
+  <shape type="rectangle"><transform name="to_world"><translate z="3"/></transform>
+    <emitter type="area"><rgb name="radiance" value="1"/></emitter></shape>
+  {shape}
+</scene>
+"#
+    )
+}
+
+/// The PLY reader (`footprint::scene::mitsuba`'s `ply.rs`): the input is the file, read by
+/// a fixed Mitsuba scene's `<shape type="ply">`.
+pub fn ply(data: &[u8]) -> Result<(), String> {
+    let d = scratch("ply");
+    std::fs::write(d.join(PLY_FILE), data).expect("a scratch file");
+    let shape =
+        format!(r#"<shape type="ply"><string name="filename" value="{PLY_FILE}"/></shape>"#);
+    std::fs::write(d.join("scene.xml"), mesh_scene(&shape)).expect("a scratch file");
+    scene(&d.join("scene.xml"))
+}
+
+/// The `.serialized` reader (`footprint::scene::mitsuba`'s `serialized.rs`): the first
+/// byte picks the mesh (`shape_index` = byte % 4, so that the fuzzer reaches the table of
+/// offsets), the rest is the file, read by a fixed Mitsuba scene's
+/// `<shape type="serialized">`.
+pub fn serialized(data: &[u8]) -> Result<(), String> {
+    let d = scratch("serialized");
+    let (index, file) = data.split_first().unwrap_or((&0, &[]));
+    std::fs::write(d.join(SERIALIZED_FILE), file).expect("a scratch file");
+    let shape = format!(
+        r#"<shape type="serialized"><string name="filename" value="{SERIALIZED_FILE}"/><integer name="shape_index" value="{}"/></shape>"#,
+        index % 4
+    );
+    std::fs::write(d.join("scene.xml"), mesh_scene(&shape)).expect("a scratch file");
+    scene(&d.join("scene.xml"))
+}
+
 /// The maps file reader ([`crate::maps_file::load`]). The first byte chooses what the rest
 /// is: bit 0 clear, the whole file as it is; set, the payload, given the header a saved
 /// file has (magic, version, length and checksum), so that the fuzzer reaches the passes
@@ -178,6 +225,8 @@ pub const TARGETS: &[(&str, fn(&[u8]) -> Result<(), String>)] = &[
     ("toml_scene", toml_scene),
     ("mitsuba_scene", mitsuba_scene),
     ("obj", obj),
+    ("ply", ply),
+    ("serialized", serialized),
     ("maps_file", maps_file),
     ("shard_merge", shard_merge),
 ];

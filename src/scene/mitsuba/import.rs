@@ -179,11 +179,16 @@ mod tests {
 
     /// Loading the files ahead in parallel builds the same scene as loading each where the
     /// builder reaches it: the same triangles, shading, materials and textures, on a scene
-    /// of OBJ meshes (desk's export) and one with a bitmap texture (features).
+    /// of OBJ meshes (desk's export), one with a bitmap texture (features) and one with PLY
+    /// and `.serialized` meshes, two of one file (meshes).
     #[test]
     fn files_loaded_ahead_build_the_same_scene() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
-        for file in ["desk/mitsuba/scene.xml", "features/scene.xml"] {
+        for file in [
+            "desk/mitsuba/scene.xml",
+            "features/scene.xml",
+            "meshes/scene.xml",
+        ] {
             let path = root.join(file);
             let opts = ImportOptions::default();
             let ahead = load_with(&path, &opts, true).unwrap();

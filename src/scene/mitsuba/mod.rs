@@ -5,19 +5,21 @@
 //! Read: `<default>` parameters with `$name` substitution (overridden by `-D name=value`),
 //! `id`/`<ref>`, `to_world` transforms, the `perspective` sensor (`fov`, `fov_axis`) with its
 //! `hdrfilm` (size, `box`/`tent`/`gaussian` filter) and sampler (`sample_count`), the `path`
-//! (and `ptracer`) integrator's `max_depth`; shapes `obj`, `rectangle`, `cube`, `sphere`;
-//! BSDFs `diffuse`, `twosided`, `bumpmap`, `dielectric`, `thindielectric`, `roughdielectric`,
-//! `conductor`, `roughconductor`, `plastic`, `roughplastic`; textures `bitmap` (also `raw`) and
-//! `checkerboard` (with `to_uv`); emitters `area`, `point`, `spot`, `constant`. Anything else
-//! stops the import with an error naming the element, its line and what is supported, unless
+//! (and `ptracer`) integrator's `max_depth`; shapes `obj`, `ply`, `serialized`, `rectangle`,
+//! `cube`, `disk`, `sphere`, `cylinder`; BSDFs `diffuse`, `twosided`, `bumpmap`, `dielectric`,
+//! `thindielectric`, `roughdielectric`, `conductor`, `roughconductor`, `plastic`,
+//! `roughplastic`; textures `bitmap` (also `raw`) and `checkerboard` (with `to_uv`); emitters
+//! `area`, `point`, `spot`, `constant`, `directional`, `envmap`. Anything else stops the
+//! import with an error naming the element, its line and what is supported, unless
 //! `--lenient`, which replaces it with the stand-in the error names and lists every
 //! replacement. `docs/mitsuba.md` tables the mapping.
 //!
 //! The import reads the document in `import.rs`, into a builder (`builder.rs`) that each
 //! element's file extends: `integrator.rs`, `sensor.rs` (with the film, sampler and pixel
-//! filter), `texture.rs`, `bsdf.rs` (with `bumpmap.rs`), `shape.rs` (the meshes of `meshes.rs`) and
-//! `emitter.rs`. `xml.rs` holds the typed property lookup, `prefetch.rs` loads the files
-//! ahead, and `export.rs` writes a scene back out as Mitsuba 3 XML.
+//! filter), `texture.rs`, `bsdf.rs` (with `bumpmap.rs`), `shape.rs` (the meshes of
+//! `meshes.rs`, `ply.rs` and `serialized.rs`) and `emitter.rs`. `xml.rs` holds the typed
+//! property lookup, `prefetch.rs` loads the files ahead, and `export.rs` writes a scene back
+//! out as Mitsuba 3 XML.
 
 mod bsdf;
 mod builder;
@@ -27,8 +29,10 @@ pub mod export;
 mod import;
 mod integrator;
 mod meshes;
+mod ply;
 mod prefetch;
 mod sensor;
+mod serialized;
 mod shape;
 mod texture;
 mod xml;

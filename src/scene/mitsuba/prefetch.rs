@@ -1,5 +1,5 @@
-//! The files a Mitsuba scene reads (OBJ meshes and bitmap textures), loaded on every core
-//! before the scene is built. Mitsuba 3 loads its shapes in parallel too; footprint's
+//! The files a Mitsuba scene reads (OBJ, PLY and `.serialized` meshes and bitmap textures),
+//! loaded on every core before the scene is built. Mitsuba 3 loads its shapes in parallel too; footprint's
 //! builder walks the XML in order (ids, references, materials shared between shapes), so the
 //! slow part, parsing and decoding the files, runs here first, largest file first, and the
 //! builder takes each file's result from [`Prefetched`] where it would have loaded it.
@@ -8,7 +8,8 @@
 //! place in the document, which reports the error exactly as a sequential load does (the
 //! first failing element in document order, with its file name).
 
-use super::meshes::{self, MeshData};
+use super::meshes::{MeshData, MeshSource};
+use super::shape::mesh_source;
 use super::xml::{Doc, Props};
 use crate::scene::texture::Texture;
 use rayon::prelude::*;
@@ -16,81 +17,94 @@ use roxmltree::Node;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-/// Meshes and textures loaded ahead, by resolved path, each with the number of elements
-/// that name it: the last of them takes the file's data out (no second copy of a large
-/// mesh lives while the scene is built).
+/// Meshes (by file and, in a `.serialized` file, mesh) and textures (by resolved path)
+/// loaded ahead, each with the number of elements that name it: the last of them takes the
+/// file's data out (no second copy of a large mesh lives while the scene is built).
 #[derive(Default)]
 pub struct Prefetched {
-    meshes: HashMap<PathBuf, (MeshData, usize)>,
+    meshes: HashMap<MeshSource, (MeshData, usize)>,
     textures: HashMap<PathBuf, (Texture, usize)>,
 }
 
-/// The kinds of file loaded ahead.
-#[derive(Clone, Copy, PartialEq, Eq, Hash)]
-enum Kind {
-    Mesh,
-    Texture,
+/// A file to load ahead.
+#[derive(Clone, PartialEq, Eq, Hash)]
+enum Job {
+    Mesh(MeshSource),
+    Texture(PathBuf),
+}
+
+impl Job {
+    fn path(&self) -> &Path {
+        match self {
+            Job::Mesh(source) => source.path(),
+            Job::Texture(path) => path,
+        }
+    }
 }
 
 impl Prefetched {
-    /// Loads every `<shape type="obj">` and `<texture type="bitmap">` file under `root` in
-    /// parallel. Elements whose type or file name cannot be read are left to the builder,
-    /// which reports them.
+    /// Loads the file of every `<shape>` of type `obj`, `ply` or `serialized` and every
+    /// `<texture type="bitmap">` under `root` in parallel. Elements whose type or file name
+    /// cannot be read are left to the builder, which reports them.
     pub fn load(doc: &Doc, root: Node) -> Prefetched {
         // Each file with the number of elements that name it.
-        let mut uses: HashMap<(Kind, PathBuf), usize> = HashMap::new();
+        let mut uses: HashMap<Job, usize> = HashMap::new();
         for n in root.descendants().filter(|n| n.is_element()) {
-            let kind = match (
-                n.tag_name().name(),
-                doc.attr(n, "type").ok().flatten().as_deref(),
-            ) {
-                ("shape", Some("obj")) => Kind::Mesh,
-                ("texture", Some("bitmap")) => Kind::Texture,
-                _ => continue,
+            let Some(kind) = doc.attr(n, "type").ok().flatten() else {
+                continue;
             };
-            let name = Props::new(doc, n)
-                .ok()
-                .and_then(|p| p.string("filename").ok().flatten());
-            if let Some(name) = name {
-                *uses.entry((kind, doc.file(&name))).or_default() += 1;
+            let Ok(p) = Props::new(doc, n) else {
+                continue;
+            };
+            let job = match (n.tag_name().name(), kind.as_str()) {
+                ("shape", kind) => mesh_source(doc, n, kind, &p).ok().flatten().map(Job::Mesh),
+                ("texture", "bitmap") => p
+                    .string("filename")
+                    .ok()
+                    .flatten()
+                    .map(|name| Job::Texture(doc.file(&name))),
+                _ => None,
+            };
+            if let Some(job) = job {
+                *uses.entry(job).or_default() += 1;
             }
         }
         let mut jobs: Vec<_> = uses.into_iter().collect();
         // Largest first, so that the big files do not start last.
-        jobs.sort_by_cached_key(|((_, path), _)| {
-            std::cmp::Reverse(std::fs::metadata(path).map_or(0, |m| m.len()))
+        jobs.sort_by_cached_key(|(job, _)| {
+            std::cmp::Reverse(std::fs::metadata(job.path()).map_or(0, |m| m.len()))
         });
         let loaded: Vec<_> = jobs
             .into_par_iter()
             .with_max_len(1)
-            .map(|((kind, path), uses)| {
-                let file = match kind {
-                    Kind::Mesh => meshes::load_obj(&path).ok().map(File::Mesh),
-                    Kind::Texture => Texture::load(&path).ok().map(File::Texture),
+            .map(|(job, uses)| {
+                let file = match &job {
+                    Job::Mesh(source) => source.load().ok().map(File::Mesh),
+                    Job::Texture(path) => Texture::load(path).ok().map(File::Texture),
                 };
-                (path, file, uses)
+                (job, file, uses)
             })
             .collect();
         let mut out = Prefetched::default();
-        for (path, file, uses) in loaded {
-            match file {
-                Some(File::Mesh(m)) => {
-                    out.meshes.insert(path, (m, uses));
+        for (job, file, uses) in loaded {
+            match (job, file) {
+                (Job::Mesh(source), Some(File::Mesh(m))) => {
+                    out.meshes.insert(source, (m, uses));
                 }
-                Some(File::Texture(t)) => {
+                (Job::Texture(path), Some(File::Texture(t))) => {
                     out.textures.insert(path, (t, uses));
                 }
-                None => {}
+                _ => {}
             }
         }
         out
     }
 
-    /// The mesh at `path`: loaded ahead, else loaded now (and its error reported).
-    pub fn mesh(&mut self, path: &Path) -> crate::error::Result<MeshData> {
-        match take(&mut self.meshes, path) {
+    /// The mesh `source` names: loaded ahead, else loaded now (and its error reported).
+    pub fn mesh(&mut self, source: &MeshSource) -> crate::error::Result<MeshData> {
+        match take(&mut self.meshes, source) {
             Some(m) => Ok(m),
-            None => meshes::load_obj(path),
+            None => source.load(),
         }
     }
 
@@ -109,15 +123,20 @@ enum File {
     Texture(Texture),
 }
 
-/// The data at `path`: a copy while other elements will still ask for it, the data itself
+/// The data of `key`: a copy while other elements will still ask for it, the data itself
 /// for the last.
-fn take<T: Clone>(files: &mut HashMap<PathBuf, (T, usize)>, path: &Path) -> Option<T> {
-    let (data, uses) = files.get_mut(path)?;
+fn take<K, Q, T>(files: &mut HashMap<K, (T, usize)>, key: &Q) -> Option<T>
+where
+    K: std::borrow::Borrow<Q> + std::hash::Hash + Eq,
+    Q: std::hash::Hash + Eq + ?Sized,
+    T: Clone,
+{
+    let (data, uses) = files.get_mut(key)?;
     if *uses > 1 {
         *uses -= 1;
         return Some(data.clone());
     }
-    files.remove(path).map(|(data, _)| data)
+    files.remove(key).map(|(data, _)| data)
 }
 
 #[cfg(test)]

@@ -1,16 +1,49 @@
-//! The `<shape>` element: a mesh (`meshes.rs`) with its BSDF and area emitter, transformed to
-//! the world and added to the scene's triangles.
+//! The `<shape>` element: a mesh (`meshes.rs`, and the files of `ply.rs` and
+//! `serialized.rs`) with its BSDF and area emitter, transformed to the world and added to the
+//! scene's triangles.
 
 use super::builder::Builder;
-use super::meshes::{self, MeshData};
-use super::xml::Props;
+use super::meshes::{self, MeshData, MeshSource};
+use super::xml::{Doc, Props};
+use crate::Rgb;
 use crate::bsdf::material::Material;
 use crate::error::Result;
 use crate::scene::geometry::{TriangleGeom, TriangleShading};
 use glam::{Mat3, Mat4, Vec2, Vec3};
 use roxmltree::{Node, NodeId};
 
-const SHAPES: &str = "obj, rectangle, cube, sphere";
+const SHAPES: &str = "obj, ply, serialized, rectangle, cube, disk, sphere, cylinder";
+
+/// The mesh file a `<shape>` of type `kind` reads (`None` for the shapes that are not
+/// files): its `filename`, and for `serialized` its `shape_index`.
+pub(super) fn mesh_source(
+    doc: &Doc,
+    node: Node,
+    kind: &str,
+    p: &Props,
+) -> Result<Option<MeshSource>> {
+    if !matches!(kind, "obj" | "ply" | "serialized") {
+        return Ok(None);
+    }
+    let file = p
+        .string("filename")?
+        .ok_or_else(|| doc.err(node, format!("{kind} needs 'filename'")))?;
+    let path = doc.file(&file);
+    Ok(Some(match kind {
+        "obj" => MeshSource::Obj(path),
+        "ply" => MeshSource::Ply(path),
+        _ => {
+            let index = p.integer("shape_index")?.unwrap_or(0);
+            let shape_index = u32::try_from(index).map_err(|_| {
+                doc.err(
+                    node,
+                    format!("'shape_index' must be a non-negative 32-bit integer, got {index}"),
+                )
+            })?;
+            MeshSource::Serialized { path, shape_index }
+        }
+    }))
+}
 
 impl<'a, 'd> Builder<'a, 'd> {
     pub(super) fn shape(&mut self, node: Node<'a, 'a>) -> Result<()> {
@@ -20,15 +53,19 @@ impl<'a, 'd> Builder<'a, 'd> {
         let flip_normals = p.boolean("flip_normals")?.unwrap_or(false);
         let mut face_normals = false;
         let mut mesh = match kind.as_str() {
-            "obj" => {
-                let file = p
-                    .string("filename")?
-                    .ok_or_else(|| self.doc.err(node, "obj needs 'filename'"))?;
+            "obj" | "ply" | "serialized" => {
+                let source = mesh_source(self.doc, node, &kind, &p)?
+                    .expect("obj, ply and serialized name a file");
                 face_normals = p.boolean("face_normals")?.unwrap_or(false);
-                let flip_tex = p.boolean("flip_tex_coords")?.unwrap_or(true);
-                let mut mesh = self.files.mesh(&self.doc.file(&file))?;
-                if !flip_tex {
-                    // Mitsuba then reads v as stored: flip it into the OBJ convention.
+                // Mitsuba flips OBJ's v by default and PLY's not; .serialized has no choice.
+                let flip_default = kind == "obj";
+                let flip_tex = if kind == "serialized" {
+                    flip_default
+                } else {
+                    p.boolean("flip_tex_coords")?.unwrap_or(flip_default)
+                };
+                let mut mesh = self.files.mesh(&source)?;
+                if flip_tex != flip_default {
                     for t in mesh.uvs.iter_mut().flatten() {
                         t.y = 1.0 - t.y;
                     }
@@ -52,7 +89,31 @@ impl<'a, 'd> Builder<'a, 'd> {
                 to_world = to_world
                     * Mat4::from_translation(center)
                     * Mat4::from_scale(Vec3::splat(radius));
-                meshes::sphere(64, 128)
+                meshes::sphere(meshes::SPHERE_QUADS.0, meshes::SPHERE_QUADS.1)
+            }
+            "disk" => meshes::disk(meshes::DISK_SEGMENTS),
+            "cylinder" => {
+                let p0 = p.vec3("p0")?.unwrap_or(Vec3::ZERO);
+                let p1 = p.vec3("p1")?.unwrap_or(Vec3::Z);
+                let radius = p.float_or("radius", 1.0)?;
+                let length = (p1 - p0).length();
+                if !(radius > 0.0 && length > 0.0 && length.is_finite()) {
+                    return Err(self.doc.err(
+                        node,
+                        format!(
+                            "cylinder needs a positive radius and p0 != p1, got radius {radius}, length {length}"
+                        ),
+                    ));
+                }
+                // Mitsuba's frame about the axis (Duff et al. 2017, glam's orthonormal pair
+                // is the same construction): it places u = 0.
+                let axis = (p1 - p0) / length;
+                let (s, t) = axis.any_orthonormal_pair();
+                to_world = to_world
+                    * Mat4::from_translation(p0)
+                    * Mat4::from_mat3(Mat3::from_cols(s, t, axis))
+                    * Mat4::from_scale(Vec3::new(radius, radius, length));
+                meshes::cylinder(meshes::CYLINDER_SEGMENTS)
             }
             other => {
                 return self.doc.unsupported(
@@ -107,7 +168,9 @@ impl<'a, 'd> Builder<'a, 'd> {
                 }
             }
         }
-        // Mitsuba's default BSDF: one-sided diffuse of reflectance 0.5.
+        // Mitsuba's default BSDF: one-sided diffuse of reflectance 0.5, and 0 on a shape
+        // that emits (Mitsuba 3's `Shape` constructor): a light without a BSDF reflects
+        // nothing.
         let (bsdf_node, mut m) = match material {
             Some((id, m)) => (Some(id), m),
             None => (
@@ -115,6 +178,11 @@ impl<'a, 'd> Builder<'a, 'd> {
                 Material {
                     name: "default".into(),
                     two_sided: false,
+                    kd: if radiance.is_some() {
+                        Rgb::ZERO
+                    } else {
+                        Material::default().kd
+                    },
                     ..Material::default()
                 },
             ),
@@ -126,9 +194,11 @@ impl<'a, 'd> Builder<'a, 'd> {
             }
         }
         let material = self.material_id(bsdf_node, m);
-        // Mitsuba's rectangle and sphere take their front from the transformed normal (the
-        // inverse transpose), not from the winding, which a mirroring transform reverses.
-        let primitive = matches!(kind.as_str(), "rectangle" | "sphere");
+        // Mitsuba's rectangle, disk, sphere and cylinder take their front from the
+        // transformed normal (the inverse transpose), not from the winding, which a
+        // mirroring transform reverses (checked with Mitsuba 3.9.1 for the disk and the
+        // cylinder: a cylinder mirrored in x still faces out).
+        let primitive = matches!(kind.as_str(), "rectangle" | "disk" | "sphere" | "cylinder");
         let mirrored = primitive && Mat3::from_mat4(to_world).determinant() < 0.0;
         self.push_mesh(
             &mesh,
