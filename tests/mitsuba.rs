@@ -453,6 +453,7 @@ const ROUGH_GLASS: Case = Case {
     replicates: 16,
     spp: 32,
     sheets_connect: false,
+    source: Source::Bundled,
 };
 
 #[test]
