@@ -62,6 +62,7 @@ BUNDLED = {
 PUBLIC = {
     "veach-mis": dict(defines=dict(resx=64, resy=36), batches=32, spp=1024),
     "veach-bidir": dict(defines=dict(res=48), batches=32, spp=256),
+    "staircase": dict(defines=dict(resx=36, resy=64), batches=32, spp=256),
 }
 
 # The public scenes beside the repository (../shared/scenes-ext): parameters of the check.

@@ -629,6 +629,26 @@ fn mesh_files_and_shapes_match_mitsuba() {
     }
 }
 
+/// `scenes/public/fetched/staircase` (`python3 scripts/public_scenes.py fetch staircase`; the
+/// test says it skipped without it): Bitterli's "The Wooden Staircase", 774 OBJ meshes, ten
+/// bitmap textures, rough plastic and rough conductors, a `bumpmap` whose `id` sits on the
+/// BSDF inside it (so that the shapes referring to it get that BSDF without the bump, as in
+/// Mitsuba), lit by one area light through a doorway.
+#[test]
+fn staircase_matches_mitsuba() {
+    let case = Case {
+        name: "staircase",
+        res: (36, 64),
+        rfilter: "tent",
+        max_depth: 65,
+        replicates: 24,
+        spp: 64,
+        sheets_connect: false,
+        source: Source::Public(&[("resx", "36"), ("resy", "64")]),
+    };
+    check(&case, "pt-bsdf", FilmMode::Splat);
+}
+
 /// The public scenes beside the repository (`../shared/scenes-ext`: Veach Ajar and two
 /// Cornell boxes, made elsewhere) import without `--lenient` and render valid images. Their
 /// comparison with Mitsuba 3 needs Python: `python3 scripts/vs_mitsuba.py check`. A fresh

@@ -2,6 +2,7 @@
 //! the mapping).
 
 use super::builder::Builder;
+use super::conductors::NAMED_CONDUCTORS;
 use super::xml::Props;
 use crate::Rgb;
 use crate::bsdf::material::{Material, MaterialKind};
@@ -127,15 +128,26 @@ impl<'a, 'd> Builder<'a, 'd> {
             // Mitsuba's default `none`: η = 0, k = 1, whose Fresnel factor is 1 at every angle
             // (a perfect mirror).
             (None, None, None | Some("none")) => Ok((Rgb::ZERO, Rgb::ONE)),
-            (None, None, Some(m)) => {
-                self.doc.unsupported(
-                    node,
-                    &format!("conductor material '{m}'"),
-                    "material 'none' or explicit 'eta' and 'k' colours",
-                    "a perfect mirror (material 'none')",
-                )?;
-                Ok((Rgb::ZERO, Rgb::ONE))
-            }
+            // Mitsuba's presets, as its RGB variant renders them (`conductors.rs`).
+            (None, None, Some(m)) => match NAMED_CONDUCTORS.iter().find(|(n, ..)| *n == m) {
+                Some((_, e, k)) => Ok((Rgb::from_array(*e) / ext, Rgb::from_array(*k) / ext)),
+                None => {
+                    self.doc.unsupported(
+                        node,
+                        &format!("conductor material '{m}'"),
+                        &format!(
+                            "'none', {}, or explicit 'eta' and 'k' colours",
+                            NAMED_CONDUCTORS
+                                .iter()
+                                .map(|(n, ..)| *n)
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                        "a perfect mirror (material 'none')",
+                    )?;
+                    Ok((Rgb::ZERO, Rgb::ONE))
+                }
+            },
             _ => Err(self.doc.err(
                 node,
                 "give 'eta' (and 'k', default 1) or a 'material', not both",

@@ -24,6 +24,7 @@
 mod bsdf;
 mod builder;
 mod bumpmap;
+mod conductors;
 mod emitter;
 pub mod export;
 mod import;

@@ -46,7 +46,14 @@ impl<'a, 'd> Builder<'a, 'd> {
                 .err(node, format!("fov must be in (0, 179) degrees, got {fov}")));
         }
         let axis = p.string("fov_axis")?.unwrap_or_else(|| "x".into());
-        p.ignore(&["near_clip", "far_clip", "shutter_open", "shutter_close"]);
+        // A pinhole's focus distance changes nothing; Mitsuba's `perspective` accepts it too.
+        p.ignore(&[
+            "near_clip",
+            "far_clip",
+            "shutter_open",
+            "shutter_close",
+            "focus_distance",
+        ]);
         for off in ["principal_point_offset_x", "principal_point_offset_y"] {
             if p.float(off)?.is_some_and(|v| v != 0.0) {
                 self.doc
