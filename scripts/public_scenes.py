@@ -60,6 +60,75 @@ SCENES = {
         extra=["LICENSE.txt"],
         edits=[],
     ),
+    "modern-hall": dict(
+        repo="jgarciapueyo/mitsuba2-transient-scenes",
+        commit="ab67c4caa9228aa9d4115aeb90c3d3bab0aaf7b5",
+        path="staircase2",
+        what="Bitterli's 'Modern Hall' (staircase2, by NewSee2l035): a hall with a glass "
+        "balustrade, lit by thirteen disk and rectangle lamps, in Bitterli's Mitsuba 0.5 form "
+        "(which footprint and Mitsuba 3 both upgrade as they load it); 19 OBJ meshes, three "
+        "bitmap textures (7.8 MB).",
+        licence="CC-BY (LICENSE.txt)",
+        extra=["LICENSE.txt"],
+        edits=[
+            (
+                '\t\t\t<boolean name="high_quality_edges" value="true" />\n',
+                "",
+                "the copy's film property `high_quality_edges` (not in Bitterli's original, and "
+                "rejected by Mitsuba 3) removed",
+            ),
+            (
+                '<scene version="0.5.0" >\n',
+                '<scene version="0.5.0" >\n\t<default name="resx" value="1280" />\n'
+                '\t<default name="resy" value="720" />\n',
+                "the resolution made parameters (`-D resx=... -D resy=...`; defaults the "
+                "original's 1280x720)",
+            ),
+            (
+                '<integer name="width" value="1280" />',
+                '<integer name="width" value="$resx" />',
+                "the film's width reads `$resx`",
+            ),
+            (
+                '<integer name="height" value="720" />',
+                '<integer name="height" value="$resy" />',
+                "the film's height reads `$resy`",
+            ),
+        ],
+    ),
+    "matpreview": dict(
+        repo="zhiwei-c/Monte-Carlo-Path-Tracing",
+        commit="7482bda9b6be617e8bc5cef06a274ba1e1a7e914",
+        path="resources/scene/matpreview",
+        xml="rough_dielectric.xml",
+        what="Mitsuba's material preview scene (the test ball on a checkerboard plane, in "
+        "Mitsuba 3 form), the ball a rough dielectric (water, Beckmann alpha 0.1) lit by an "
+        "HDR environment map; three meshes of one .serialized file.",
+        licence="none stated with this copy (Mitsuba's example scenes)",
+        extra=[],
+        edits=[],
+    ),
+    "dining-room": dict(
+        repo="woAIxuexiSR/dynamic-neural-radiosity",
+        commit="bb01b6da5cfe84bb572c37bdc0ab059afe43ad9a",
+        path="scenes/dining-room",
+        what="Bitterli's 'The Breakfast Room' (dining-room, by Wig42) in Mitsuba 3 form: a room "
+        "lit by the sky through its windows, 52 OBJ meshes, three bitmap textures (25 MB). The "
+        "copy replaced Bitterli's `sunsky` by an HDR environment map whose file its snapshot "
+        "lacks; footprint's own test sky (`tests/emitters/sky.exr`, a sky with a sun, made by "
+        "`scripts/emitter_means.py`) stands in for it.",
+        licence="CC-BY 3.0 (Bitterli's resources page; the copy's repository is MIT)",
+        extra=[],
+        local=[("tests/emitters/sky.exr", "textures/sky.exr")],
+        edits=[
+            (
+                '<string name="filename" value="textures/spaichingen_hill_2k.exr" />',
+                '<string name="filename" value="textures/sky.exr" />',
+                "the environment map `textures/spaichingen_hill_2k.exr` (absent from the copy's "
+                "snapshot) replaced by footprint's `tests/emitters/sky.exr`",
+            )
+        ],
+    ),
 }
 
 
@@ -91,14 +160,17 @@ def reader(scene, clones):
 def fetch(name, clones):
     scene = SCENES[name]
     read = reader(scene, clones)
-    xml = read("scene.xml").decode("utf-8")
+    # The scene's XML (`xml`, where the folder holds several), written as scene.xml.
+    xml = read(scene.get("xml", "scene.xml")).decode("utf-8")
     notes = []
     for old, new, why in scene["edits"]:
         if old not in xml:
             raise RuntimeError(f"{name}: the expected text to change is not in scene.xml: {old}")
         xml = xml.replace(old, new)
         notes.append(why)
-    files = named_files(xml) + scene["extra"]
+    # Files this repository supplies (`local`: its path, the path in the scene's folder).
+    local = dict((dst, src) for src, dst in scene.get("local", []))
+    files = [f for f in named_files(xml) if f not in local] + scene["extra"]
     os.makedirs(DEST, exist_ok=True)
     tmp = tempfile.mkdtemp(prefix=f".{name}-", dir=DEST)
     try:
@@ -114,10 +186,16 @@ def fetch(name, clones):
                 print(f"\r{name}: {i + 1}/{len(files)} files", end="", flush=True)
         if sys.stdout.isatty():
             print()
+        for dst, src in local.items():
+            out = os.path.join(tmp, dst)
+            os.makedirs(os.path.dirname(out), exist_ok=True)
+            shutil.copyfile(os.path.join(ROOT, src), out)
         with open(os.path.join(tmp, "SOURCE.md"), "w", encoding="utf-8") as f:
             f.write(f"# {name}: source\n\n{scene['what']}\n\nLicence: {scene['licence']}.\n\n")
             f.write(f"GitHub `{scene['repo']}` at `{scene['commit']}`, `{scene['path']}/`, "
                     f"fetched by `scripts/public_scenes.py`.\n")
+            if "xml" in scene:
+                f.write(f"\n`scene.xml` is the folder's `{scene['xml']}`.\n")
             for n in notes:
                 f.write(f"\nChanged: {n}.\n")
         final = os.path.join(DEST, name)
@@ -127,7 +205,7 @@ def fetch(name, clones):
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise
-    print(f"{name}: {len(files) + 1} files in {os.path.relpath(final, ROOT)}")
+    print(f"{name}: {len(files) + len(local) + 1} files in {os.path.relpath(final, ROOT)}")
 
 
 def main():

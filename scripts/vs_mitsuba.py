@@ -63,6 +63,9 @@ PUBLIC = {
     "veach-mis": dict(defines=dict(resx=64, resy=36), batches=32, spp=1024),
     "veach-bidir": dict(defines=dict(res=48), batches=32, spp=256),
     "staircase": dict(defines=dict(resx=36, resy=64), batches=32, spp=256),
+    "modern-hall": dict(defines=dict(resx=64, resy=36), batches=32, spp=256),
+    "matpreview": dict(defines=dict(width=64, height=48), batches=32, spp=256),
+    "dining-room": dict(defines=dict(resx=48, resy=48), batches=32, spp=256),
 }
 
 # The public scenes beside the repository (../shared/scenes-ext): parameters of the check.
@@ -316,6 +319,9 @@ TABLE = [
     ("Veach Bidir 96x96", os.path.join(ROOT, "scenes", "public", "veach-bidir", "scene.xml"), dict(res=96)),
     ("torus 128x96", os.path.join(ROOT, "scenes", "public", "fetched", "torus", "scene.xml"), dict(resx=128, resy=96)),
     ("staircase 72x128", os.path.join(ROOT, "scenes", "public", "fetched", "staircase", "scene.xml"), dict(resx=72, resy=128)),
+    ("Modern Hall 128x72", os.path.join(ROOT, "scenes", "public", "fetched", "modern-hall", "scene.xml"), dict(resx=128, resy=72)),
+    ("matpreview 128x96", os.path.join(ROOT, "scenes", "public", "fetched", "matpreview", "scene.xml"), dict(width=128, height=96)),
+    ("dining room 96x96", os.path.join(ROOT, "scenes", "public", "fetched", "dining-room", "scene.xml"), dict(resx=96, resy=96)),
     ("cornell (bundled) 128x128", os.path.join(ROOT, "scenes", "cornell", "mitsuba", "scene.xml"), dict(resx=128, resy=128)),
     ("door (bundled) 128x128", os.path.join(ROOT, "scenes", "door", "mitsuba", "scene.xml"), dict(resx=128, resy=128)),
     ("desk (bundled) 128x128", os.path.join(ROOT, "scenes", "desk", "mitsuba", "scene.xml"), dict(resx=128, resy=128)),
@@ -391,11 +397,15 @@ def cmd_compare(args):
     """Equal time against Mitsuba 3 `path`: both renderers get the same wall-clock budget for
     rendering (footprint's includes its map passes; neither includes loading the scene), on
     the public scenes and the bundled scenes' XML, several seeds each; one table with the
-    median relative MSE of each and their ratio."""
+    median relative MSE of Mitsuba and of each footprint method, and their ratios."""
     mi = mitsuba()
     import numpy as np
     out = args.out or "compare-mitsuba"
     os.makedirs(out, exist_ok=True)
+    methods = args.methods.split(",") if args.methods else [f"{args.integrator}-{args.guide}"]
+    for m in methods:
+        if m.count("-") != 1:
+            sys.exit(f"--methods: {m!r} is not INTEGRATOR-GUIDE (pt-bsdf, lt-footprint, ...)")
     rows = []
     for name, xml, defines in TABLE:
         if args.only and not any(o.lower() in name.lower() for o in args.only):
@@ -419,7 +429,9 @@ def cmd_compare(args):
         per_spp = max((t20 - t4) / 16, 1e-9)
         fixed = max(t4 - 4 * per_spp, 0.0)
         dflags = [x for k, v in defines.items() for x in ("-D", f"{k}={v}")]
-        ours, theirs, our_spp, their_spp, their_secs = [], [], [], [], []
+        theirs, their_spp, their_secs = [], [], []
+        ours = {m: [] for m in methods}
+        our_spp = {m: [] for m in methods}
         for s in range(args.seeds):
             spp = max(1, int((args.time - fixed) / per_spp))
             t0 = time.time()
@@ -427,30 +439,48 @@ def cmd_compare(args):
             their_s = time.time() - t0
             theirs.append(rel_mse(img, ref))
             their_spp.append(spp)
-            exr = os.path.join(out, "footprint.exr")
-            extra = ["--sequence", args.sequence] if args.sequence else []
-            extra += ["--rr-depth", str(args.rr_depth)] if args.rr_depth is not None else []
-            run = subprocess.run([FOOTPRINT, "render", xml, *dflags, "--integrator", args.integrator,
-                                  "--guide", args.guide, "--time", str(args.time), "--seed", str(100 + s),
-                                  *extra, "-o", exr], check=True, capture_output=True, text=True)
-            our_spp.append(int(run.stdout.split(" spp ")[0].split()[-1]))
-            ours.append(rel_mse(np.array(mi.Bitmap(exr))[..., :3], ref))
             their_secs.append(their_s)
-            print(f"  seed {s}: footprint {ours[-1]:.4g} ({our_spp[-1]} spp), Mitsuba {theirs[-1]:.4g} ({spp} spp"
-                  f" in {their_s:.1f} s)", flush=True)
-        rows.append((name, float(np.median(ours)), int(np.median(our_spp)), float(np.median(theirs)),
-                     int(np.median(their_spp)), float(np.median(their_secs))))
-    print(f"\nequal time {args.time:g} s per render, {args.seeds} seeds, footprint {args.integrator}-{args.guide}"
+            line = f"  seed {s}: Mitsuba {theirs[-1]:.4g} ({spp} spp in {their_s:.1f} s)"
+            for m in methods:
+                integrator, guide = m.split("-")
+                exr = os.path.join(out, "footprint.exr")
+                extra = ["--sequence", args.sequence] if args.sequence else []
+                extra += ["--rr-depth", str(args.rr_depth)] if args.rr_depth is not None else []
+                run = subprocess.run([FOOTPRINT, "render", xml, *dflags, "--integrator", integrator,
+                                      "--guide", guide, "--time", str(args.time), "--seed", str(100 + s),
+                                      *extra, "-o", exr], check=True, capture_output=True, text=True)
+                our_spp[m].append(int(run.stdout.split(" spp ")[0].split()[-1]))
+                ours[m].append(rel_mse(np.array(mi.Bitmap(exr))[..., :3], ref))
+                line += f", {m} {ours[m][-1]:.4g} ({our_spp[m][-1]} spp)"
+            print(line, flush=True)
+        rows.append((name, {m: (float(np.median(ours[m])), int(np.median(our_spp[m]))) for m in methods},
+                     float(np.median(theirs)), int(np.median(their_spp)), float(np.median(their_secs))))
+    print(f"\nequal time {args.time:g} s per render, {args.seeds} seeds, footprint {', '.join(methods)}"
           f" ({args.sequence or 'default'} numbers), Mitsuba sampler {args.mitsuba_sampler or 'as the XML says'}, "
           f"Russian roulette from depth {args.rr_depth if args.rr_depth is not None else 'as each renderer defaults'}; medians")
     # Mitsuba's sample count comes from timings taken before its renders; where the machine's
     # speed drifts, its renders end short of (or past) the budget. Relative MSE falls as
-    # 1/time, so MSE x seconds compares the two at exactly equal time: the last column.
-    print(f"| scene | footprint rel. MSE (spp) | Mitsuba 3 `path` rel. MSE (spp, seconds) | ratio | ratio of MSE x seconds |")
-    print(f"|---|---|---|---|---|")
-    for name, o, os_, t, ts, tsec in rows:
-        print(f"| {name} | {o:.4g} ({os_}) | {t:.4g} ({ts}, {tsec:.1f} s) | {o / t:.2f} "
-              f"| {o * args.time / (t * tsec):.2f} |")
+    # 1/time, so MSE x seconds compares the two at exactly equal time: the ratios below.
+    if len(methods) == 1:
+        m = methods[0]
+        print(f"| scene | footprint `{m}` rel. MSE (spp) | Mitsuba 3 `path` rel. MSE (spp, seconds) | ratio "
+              f"| ratio of MSE x seconds |")
+        print("|---|---|---|---|---|")
+        for name, o, t, ts, tsec in rows:
+            e, n = o[m]
+            print(f"| {name} | {e:.4g} ({n}) | {t:.4g} ({ts}, {tsec:.1f} s) | {e / t:.2f} "
+                  f"| {e * args.time / (t * tsec):.2f} |")
+        return 0
+    # Several methods: each one's median relative MSE, and its ratio of MSE x seconds to
+    # Mitsuba's (below 1: footprint's method is better at equal time); the best in bold.
+    print("| scene | Mitsuba 3 `path` (spp) | " + " | ".join(f"`{m}`" for m in methods) + " |")
+    print("|---|---|" + "---|" * len(methods))
+    for name, o, t, ts, tsec in rows:
+        ratios = {m: o[m][0] * args.time / (t * tsec) for m in methods}
+        best = min(ratios, key=ratios.get)
+        cells = [(f"**{ratios[m]:.2f}**" if m == best else f"{ratios[m]:.2f}") + f" ({o[m][0]:.3g})"
+                 for m in methods]
+        print(f"| {name} | {t:.3g} ({ts}) | " + " | ".join(cells) + " |")
     return 0
 
 
@@ -483,6 +513,9 @@ def main():
     q.add_argument("--seeds", type=int, default=3, help="renders per renderer and scene")
     q.add_argument("--integrator", default="pt")
     q.add_argument("--guide", default="bsdf")
+    q.add_argument("--methods", help="footprint methods, comma-separated INTEGRATOR-GUIDE (pt-bsdf,pt-footprint,"
+                   "lt-grid,...), each rendered per seed at the budget [default: INTEGRATOR-GUIDE from --integrator and --guide]; with "
+                   "several, the table gives each one's ratio of MSE x seconds to Mitsuba's")
     q.add_argument("--reference-time", type=float, default=600.0, help="seconds of a Mitsuba reference")
     q.add_argument("--sequence", choices=["sobol", "independent"], help="footprint's --sequence [default: its default]")
     q.add_argument("--mitsuba-sampler", help="replace the XML's sampler type for Mitsuba (e.g. multijitter, ldsampler)")

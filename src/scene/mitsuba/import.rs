@@ -3,7 +3,7 @@
 
 use super::builder::Builder;
 use super::prefetch;
-use super::xml::Doc;
+use super::xml::{Doc, legacy_version};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 use std::collections::HashMap;
@@ -49,11 +49,26 @@ fn load_with(path: &Path, opts: &ImportOptions, prefetch: bool) -> Result<Scene>
         xml: &xml,
         params: HashMap::new(),
         lenient: opts.lenient,
+        legacy: false,
         notes: Default::default(),
     };
     if root.tag_name().name() != "scene" {
         return Err(doc.err(root, "the root element must be <scene>"));
     }
+    // Mitsuba 3 requires the version, and upgrades the property names of files older than
+    // 2.0 (Mitsuba 0.5 and 0.6) as it loads them; footprint does the same.
+    let version = root.attribute("version").ok_or_else(|| {
+        doc.err(
+            root,
+            "<scene> needs a 'version' attribute (Mitsuba 3 requires it)",
+        )
+    })?;
+    doc.legacy = legacy_version(version).ok_or_else(|| {
+        doc.err(
+            root,
+            format!("version '{version}' is not a version number (such as 3.0.0)"),
+        )
+    })?;
     // The builder walks nested objects recursively: a bound on the depth bounds its stack.
     let mut stack = vec![(root, 1usize)];
     while let Some((node, depth)) = stack.pop() {

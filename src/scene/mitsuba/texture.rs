@@ -6,7 +6,7 @@ use super::xml::Props;
 use crate::Rgb;
 use crate::error::Result;
 use crate::scene::texture::Texture;
-use glam::Affine2;
+use glam::{Affine2, Vec2};
 use roxmltree::Node;
 
 const TEXTURES: &str = "bitmap, checkerboard";
@@ -100,6 +100,15 @@ impl<'a, 'd> Builder<'a, 'd> {
                 return Ok(None);
             }
         };
+        if self.doc.legacy {
+            // Mitsuba 0.x's `uoffset`, `voffset`, `uscale`, `vscale`, which Mitsuba 3 turns
+            // into `to_uv` = scale · translate as it loads such a file.
+            let o = Vec2::new(p.float_or("uoffset", 0.0)?, p.float_or("voffset", 0.0)?);
+            let s = Vec2::new(p.float_or("uscale", 1.0)?, p.float_or("vscale", 1.0)?);
+            if o != Vec2::ZERO || s != Vec2::ONE {
+                tex.to_uv = Some(Affine2::from_scale(s) * Affine2::from_translation(o));
+            }
+        }
         if let Some(m) = p.transform("to_uv")? {
             // The 2-D affine part: rows and columns x, y and translation.
             let c = m.to_cols_array_2d();

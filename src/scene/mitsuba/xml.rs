@@ -38,6 +38,10 @@ pub struct Doc<'a> {
     /// `<default>` values, overridden by the command line's `-D`.
     pub params: HashMap<String, String>,
     pub lenient: bool,
+    /// The file's `version` is below 2.0 (Mitsuba 0.5 and 0.6, as Bitterli's collection and
+    /// most scenes of the path-guiding papers were written): property names are read as
+    /// Mitsuba 3 upgrades them ([`upgraded_name`]).
+    pub legacy: bool,
     /// What `--lenient` replaced, one line each.
     pub notes: RefCell<Vec<String>>,
 }
@@ -143,6 +147,45 @@ impl<'a> Doc<'a> {
     }
 }
 
+/// Whether a `<scene version="...">` is older than 2.0.0 (Mitsuba 0.x), whose property names
+/// Mitsuba 3 upgrades when it loads the file. `None` for a version that is not numbers.
+pub fn legacy_version(version: &str) -> Option<bool> {
+    let major = version.split('.').next()?.trim().parse::<u32>().ok()?;
+    if !version.split('.').all(|p| p.trim().parse::<u32>().is_ok()) {
+        return None;
+    }
+    Some(major < 2)
+}
+
+/// A property's name in a file older than version 2.0, as Mitsuba 3 reads it
+/// (`upgrade_from_v1` in Mitsuba's `src/core/parser.cpp`): camelCase becomes
+/// underscore_case, an uppercase run after a lowercase letter lowered as one word
+/// (`maxDepth` → `max_depth`, `intIOR` → `int_ior`, `toWorld` → `to_world`), and a
+/// `diffuse` BSDF's `diffuseReflectance` becomes `reflectance`.
+pub fn upgraded_name(name: &str, plugin: Option<&str>) -> String {
+    let chars: Vec<char> = name.chars().collect();
+    let mut out = String::with_capacity(name.len() + 4);
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        if i > 0 && chars[i - 1].is_ascii_lowercase() && c.is_ascii_uppercase() {
+            out.push('_');
+            out.push(c.to_ascii_lowercase());
+            while i + 1 < chars.len() && chars[i + 1].is_ascii_uppercase() {
+                i += 1;
+                out.push(chars[i].to_ascii_lowercase());
+            }
+        } else {
+            out.push(c);
+        }
+        i += 1;
+    }
+    if plugin == Some("diffuse") && out == "diffuse_reflectance" {
+        return "reflectance".into();
+    }
+    out
+}
+
 /// Parses a list of numbers separated by commas and/or white space.
 pub fn numbers(s: &str) -> Option<Vec<f32>> {
     s.split(|c: char| c == ',' || c.is_whitespace())
@@ -166,14 +209,18 @@ impl<'a, 'd> Props<'a, 'd> {
         let mut named = HashMap::new();
         let mut unnamed = Vec::new();
         let mut used = HashSet::new();
+        let plugin = node.attribute("type");
         for c in doc.children(node) {
             let tag = c.tag_name().name();
-            let name = doc.attr(c, "name")?;
+            let mut name = doc.attr(c, "name")?;
             // Nested objects (bsdf, emitter, film, sampler, rfilter, ...) are objects whatever
             // their `name`; a named `ref` may be a texture property or an object (`<ref
             // name="bsdf" id="m"/>`): it is both, and counts as read when used as either.
             let property = PROPERTY_TAGS.contains(&tag) || tag == "texture" || tag == "ref";
             let object = !PROPERTY_TAGS.contains(&tag) && !(tag == "texture" && name.is_some());
+            if doc.legacy && property {
+                name = name.map(|n| upgraded_name(&n, plugin));
+            }
             match name {
                 Some(n) if property => {
                     if named.insert(n.clone(), c).is_some() {
@@ -524,4 +571,49 @@ pub fn parse_transform(doc: &Doc, node: Node) -> Result<Mat4> {
         return Err(doc.err(node, "the transform is singular or not finite"));
     }
     Ok(m)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The names Mitsuba 3's `camel_to_underscore_case` gives the properties of Bitterli's
+    /// version 0.5 files, worked out by hand from its rule.
+    #[test]
+    fn legacy_names_upgrade_as_mitsuba_3() {
+        for (old, new) in [
+            ("maxDepth", "max_depth"),
+            ("toWorld", "to_world"),
+            ("sampleCount", "sample_count"),
+            ("intIOR", "int_ior"),
+            ("extIOR", "ext_ior"),
+            ("specularReflectance", "specular_reflectance"),
+            ("filterType", "filter_type"),
+            ("alphaU", "alpha_u"),
+            ("fov", "fov"),
+            ("max_depth", "max_depth"),
+            ("IOR", "IOR"),
+            ("rfilter", "rfilter"),
+        ] {
+            assert_eq!(upgraded_name(old, Some("roughplastic")), new, "{old}");
+        }
+        assert_eq!(
+            upgraded_name("diffuseReflectance", Some("diffuse")),
+            "reflectance"
+        );
+        assert_eq!(
+            upgraded_name("diffuseReflectance", Some("plastic")),
+            "diffuse_reflectance"
+        );
+    }
+
+    #[test]
+    fn versions_below_two_are_legacy() {
+        assert_eq!(legacy_version("0.5.0"), Some(true));
+        assert_eq!(legacy_version("0.6.0"), Some(true));
+        assert_eq!(legacy_version("2.0.0"), Some(false));
+        assert_eq!(legacy_version("3.0.0"), Some(false));
+        assert_eq!(legacy_version("three"), None);
+        assert_eq!(legacy_version("3.x"), None);
+    }
 }
