@@ -554,17 +554,14 @@ fn lt_check_scene_combined_image_matches_mitsuba() {
 /// standard error is 1.4% at 2048 spp, so the replicates take 512 spp each (0.3%).
 #[test]
 fn veach_mis_matches_mitsuba() {
-    let case = Case {
-        name: "veach-mis",
-        res: (64, 36),
-        rfilter: "tent",
-        max_depth: 3,
-        replicates: 24,
-        spp: 512,
-        sheets_connect: false,
-        source: Source::Public(&[("resx", "64"), ("resy", "36")]),
-    };
-    check(&case, "pt-bsdf", FilmMode::Splat);
+    check_public(
+        "veach-mis",
+        (64, 36),
+        "tent",
+        3,
+        512,
+        &[("resx", "64"), ("resy", "36")],
+    );
 }
 
 /// `scenes/public/veach-bidir`: Bitterli's "Veach, Bidir Room" (Veach 1997, fig. 10.3), a
@@ -572,17 +569,7 @@ fn veach_mis_matches_mitsuba() {
 /// without vertex normals, `face_normals`, a multijitter sampler read as any sampler).
 #[test]
 fn veach_bidir_matches_mitsuba() {
-    let case = Case {
-        name: "veach-bidir",
-        res: (48, 48),
-        rfilter: "box",
-        max_depth: 7,
-        replicates: 24,
-        spp: 128,
-        sheets_connect: false,
-        source: Source::Public(&[("res", "48")]),
-    };
-    check(&case, "pt-bsdf", FilmMode::Splat);
+    check_public("veach-bidir", (48, 48), "box", 7, 128, &[("res", "48")]);
 }
 
 const MESHES: Case = Case {
@@ -636,17 +623,14 @@ fn mesh_files_and_shapes_match_mitsuba() {
 /// Mitsuba), lit by one area light through a doorway.
 #[test]
 fn staircase_matches_mitsuba() {
-    let case = Case {
-        name: "staircase",
-        res: (36, 64),
-        rfilter: "tent",
-        max_depth: 65,
-        replicates: 24,
-        spp: 64,
-        sheets_connect: false,
-        source: Source::Public(&[("resx", "36"), ("resy", "64")]),
-    };
-    check(&case, "pt-bsdf", FilmMode::Splat);
+    check_public(
+        "staircase",
+        (36, 64),
+        "tent",
+        65,
+        64,
+        &[("resx", "36"), ("resy", "64")],
+    );
 }
 
 /// `scenes/public/fetched/modern-hall` (`python3 scripts/public_scenes.py fetch modern-hall`;
@@ -656,17 +640,14 @@ fn staircase_matches_mitsuba() {
 /// conductors, thirteen lamps on `disk` and `rectangle` shapes.
 #[test]
 fn modern_hall_matches_mitsuba() {
-    let case = Case {
-        name: "modern-hall",
-        res: (64, 36),
-        rfilter: "tent",
-        max_depth: 65,
-        replicates: 24,
-        spp: 64,
-        sheets_connect: false,
-        source: Source::Public(&[("resx", "64"), ("resy", "36")]),
-    };
-    check(&case, "pt-bsdf", FilmMode::Splat);
+    check_public(
+        "modern-hall",
+        (64, 36),
+        "tent",
+        65,
+        64,
+        &[("resx", "64"), ("resy", "36")],
+    );
 }
 
 /// `scenes/public/fetched/matpreview` (`python3 scripts/public_scenes.py fetch matpreview`;
@@ -675,17 +656,14 @@ fn modern_hall_matches_mitsuba() {
 /// its `to_world`), at unlimited depth; the meshes from one `.serialized` file.
 #[test]
 fn matpreview_matches_mitsuba() {
-    let case = Case {
-        name: "matpreview",
-        res: (64, 48),
-        rfilter: "gaussian",
-        max_depth: 1024,
-        replicates: 24,
-        spp: 64,
-        sheets_connect: false,
-        source: Source::Public(&[("width", "64"), ("height", "48")]),
-    };
-    check(&case, "pt-bsdf", FilmMode::Splat);
+    check_public(
+        "matpreview",
+        (64, 48),
+        "gaussian",
+        1024,
+        64,
+        &[("width", "64"), ("height", "48")],
+    );
 }
 
 /// `scenes/public/fetched/dining-room` (`python3 scripts/public_scenes.py fetch dining-room`;
@@ -694,15 +672,36 @@ fn matpreview_matches_mitsuba() {
 /// missing one), rough plastic and rough conductors, bitmap textures.
 #[test]
 fn dining_room_matches_mitsuba() {
+    check_public(
+        "dining-room",
+        (48, 48),
+        "tent",
+        8,
+        64,
+        &[("resx", "48"), ("resy", "48")],
+    );
+}
+
+/// A public scene (`scenes/public/`, kept or fetched) against its Mitsuba 3 reference with
+/// unguided path tracing: 24 replicates of `spp` at `res`, with the `-D` parameters
+/// `defines` (its resolution); `rfilter` and `max_depth` are the scene's own.
+fn check_public(
+    name: &'static str,
+    res: (u32, u32),
+    rfilter: &'static str,
+    max_depth: u32,
+    spp: u32,
+    defines: &'static [(&'static str, &'static str)],
+) {
     let case = Case {
-        name: "dining-room",
-        res: (48, 48),
-        rfilter: "tent",
-        max_depth: 8,
+        name,
+        res,
+        rfilter,
+        max_depth,
         replicates: 24,
-        spp: 64,
+        spp,
         sheets_connect: false,
-        source: Source::Public(&[("resx", "48"), ("resy", "48")]),
+        source: Source::Public(defines),
     };
     check(&case, "pt-bsdf", FilmMode::Splat);
 }
