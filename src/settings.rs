@@ -247,7 +247,8 @@ pub struct GuideParams {
     pub p_bsdf: f32,
     /// Camera paths (path tracing, the combined image) and light paths (light tracing, the
     /// combined image) learn the probability of sampling the BSDF per region of their guide
-    /// cache from earlier passes (`src/guide/selection.rs`).
+    /// cache from earlier passes, 1 (not guided) where guiding does not pay for its time
+    /// (`src/guide/selection.rs`). On by default.
     pub learn_p_bsdf: bool,
     /// Russian roulette reads the guide cache's estimate of what a path would still gather
     /// (its region's particle density times the path's throughput and the surface's
@@ -304,7 +305,7 @@ impl Default for GuideParams {
             k_g_side: 32,
             k_r: 6.0,
             p_bsdf: 0.5,
-            learn_p_bsdf: false,
+            learn_p_bsdf: true,
             guided_rr: true,
             guided_split: 4,
             relative_importance: true,

@@ -292,6 +292,15 @@ impl<'a> GuidedSampler<'a> {
                     .lookup_index(at.p, at.side_normal())
                     .and_then(|i| Some((i, cache.regions()[i as usize].distribution.as_ref()?)))
                 {
+                    let p_bsdf = self.p_bsdf_in(i);
+                    if p_bsdf >= 1.0 {
+                        // A region that learned BSDF sampling alone (`selection`, "Guiding
+                        // where it pays for its time"): its estimate still steers Russian
+                        // roulette, but its distribution is not read. Not a fallback.
+                        state.density = cache.regions()[i as usize].density;
+                        state.p_bsdf = p_bsdf;
+                        return;
+                    }
                     state.mix = ChannelMix::new(at.channel_factor(), dist.get().channel_totals());
                     if state.mix.is_some() {
                         if let RegionDistribution::Raster(g) = dist {
@@ -300,7 +309,7 @@ impl<'a> GuidedSampler<'a> {
                         state.prepared = Prepared::Region(dist);
                         state.region = Some(i);
                         state.density = cache.regions()[i as usize].density;
-                        state.p_bsdf = self.p_bsdf_in(i);
+                        state.p_bsdf = p_bsdf;
                     }
                 }
             }
@@ -477,6 +486,8 @@ impl<'a> GuidedSampler<'a> {
                     p = self.p_bsdf_in(i);
                     &cache.regions()[i as usize]
                 }) {
+                    // A region that learned BSDF sampling alone.
+                    Some(_) if p >= 1.0 => None,
                     // The region's table when it has one (src/guide/table.rs), else its density.
                     Some(Region {
                         table: Some(t),

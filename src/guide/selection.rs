@@ -15,6 +15,16 @@
 //! sum, and the region takes the candidate with the smallest sum once it has
 //! [`MIN_RECORDS`] such vertices.
 //!
+//! **Guiding where it pays for its time.** A guided vertex costs more than an unguided one
+//! (the region's distribution read at the sampled direction and at the light sample's,
+//! or drawn from), so the sums of the guided candidates are weighed by
+//! [`GUIDED_VERTEX_COST`] against the last candidate, `α = 1`: BSDF sampling alone, which
+//! reads nothing of the region. A region whose vertices the guide does not help by more
+//! than its cost takes `α = 1` and is no longer guided (its vertices cost what unguided
+//! ones do, and teach nothing more: the choice is final). Efficiency is the inverse of
+//! variance times time; with the time of a region's vertices `c(α)` and the second moment
+//! `M(α)` standing for the variance, the region minimises `M(α) c(α)`.
+//!
 //! **Unbiased and reproducible.** The probabilities change only between passes, from
 //! records gathered in earlier passes: every pass samples with fixed, valid mixtures, so
 //! its estimate is unbiased whatever the learned values. The render hands the records over
@@ -26,10 +36,18 @@ use crate::guide::cache::GuideCache;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU32, Ordering};
 
-/// The candidate probabilities. Never 0 or 1: the BSDF keeps a share wherever the guide
-/// could miss a direction the BSDF favours (a defensive mixture), and the guide keeps one
-/// wherever it might still help.
-pub const CANDIDATES: [f32; 9] = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9];
+/// The candidate probabilities. Never 0: the BSDF keeps a share wherever the guide could
+/// miss a direction the BSDF favours (a defensive mixture). The last, 1, is BSDF sampling
+/// alone: a region takes it where guiding does not pay for its time
+/// ([`GUIDED_VERTEX_COST`]).
+pub const CANDIDATES: [f32; 10] = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0];
+
+/// The time of a guided vertex over an unguided one's, by which the guided candidates'
+/// second moments are weighed against BSDF sampling alone. Guided path tracing draws
+/// 0.62-0.75 of the unguided paths per second (`docs/measurements/speed.md`: about 0.34 µs
+/// per guided event against 0.7-1.2 µs of an unguided vertex, its rays included); 1.25 is
+/// the low end, so that a region leaves guiding only where it measurably does not pay.
+pub const GUIDED_VERTEX_COST: f64 = 1.25;
 
 /// Vertices with a non-zero return a region needs before its probability is learned. The
 /// second-moment estimates are heavy-tailed: with a few dozen records the choice follows the
@@ -106,8 +124,14 @@ impl SelectionLearner {
             }
             for (m, &a) in s.moments.iter_mut().zip(&CANDIDATES) {
                 let p_a = a * r.pdf_bsdf_w + (1.0 - a) * r.pdf_guide_w;
-                // p_a >= min(a, 1 - a) · (p_bsdf + p_guide) > 0 wherever pdf_w > 0.
-                *m += r.x2 as f64 * r.pdf_w as f64 / p_a as f64;
+                // For a < 1, p_a >= min(a, 1 - a) · (p_bsdf + p_guide) > 0 wherever
+                // pdf_w > 0; BSDF sampling alone cannot draw a direction of BSDF density 0
+                // that brought light back: its second moment is unbounded.
+                *m += if p_a > 0.0 {
+                    r.x2 as f64 * r.pdf_w as f64 / p_a as f64
+                } else {
+                    f64::INFINITY
+                };
             }
             s.records += 1;
         }
@@ -115,8 +139,16 @@ impl SelectionLearner {
             if s.records < MIN_RECORDS {
                 continue;
             }
+            let cost = |j: usize| {
+                let c = if CANDIDATES[j] < 1.0 {
+                    GUIDED_VERTEX_COST
+                } else {
+                    1.0
+                };
+                s.moments[j] * c
+            };
             let best = (0..CANDIDATES.len())
-                .min_by(|&a, &b| s.moments[a].total_cmp(&s.moments[b]))
+                .min_by(|&a, &b| cost(a).total_cmp(&cost(b)))
                 .map_or(self.default, |j| CANDIDATES[j]);
             self.p_bsdf[i].store(best.to_bits(), Ordering::Relaxed);
         }
@@ -194,10 +226,11 @@ mod tests {
             0.5,
             "a region without records keeps the default"
         );
-        // The reverse: light only where the BSDF is dense.
+        // The reverse: light only where the BSDF is dense; BSDF sampling alone, whose
+        // second moment 1 is below 0.9's 1/0.901 weighed by the guide's cost.
         let l = SelectionLearner::new(1, 0.5);
         l.absorb(&records(MIN_RECORDS, 1.0, 0.01));
-        assert_eq!(l.p_bsdf(0), 0.9);
+        assert_eq!(l.p_bsdf(0), 1.0);
         // Half of each kind with p = 1 and 0: M(α) ∝ 1/α + 1/(1 - α), smallest at 1/2; a
         // skew of 4 to 1 toward the guide's directions moves the optimum to
         // argmin 4/(1 - α) + 1/α = 1/3, so the grid's 0.3.
@@ -211,6 +244,27 @@ mod tests {
         r.extend(records(4 * MIN_RECORDS, 0.0, 1.0));
         l.absorb(&r);
         assert_eq!(l.p_bsdf(0), 0.3);
+    }
+
+    /// A guide whose density at the directions that bring light back is `g` times the
+    /// BSDF's: `M(α) ∝ 1/(α + (1 - α) g)`, smallest at the least BSDF share for `g > 1`.
+    /// Guiding is kept only where that beats BSDF sampling alone by more than its cost:
+    /// at `g = 1.1`, `M(0.1) = 0.917` weighed by 1.25 is 1.147 against `M(1) = 1`; at
+    /// `g = 2`, 0.658 against 1.
+    #[test]
+    fn guides_only_where_the_guide_pays_for_its_cost() {
+        for (g, expected) in [(1.0, 1.0), (1.1, 1.0), (2.0, 0.1)] {
+            let l = SelectionLearner::new(1, 0.5);
+            l.absorb(&records(MIN_RECORDS, 1.0, g));
+            assert_eq!(l.p_bsdf(0), expected, "guide density {g} x the BSDF's");
+        }
+        // Light found in a direction the BSDF never draws: BSDF sampling alone cannot
+        // estimate it, whatever the cost.
+        let l = SelectionLearner::new(1, 0.5);
+        let mut r = records(MIN_RECORDS, 1.0, 1.0);
+        r.push(records(1, 0.0, 1.0)[0]);
+        l.absorb(&r);
+        assert!(l.p_bsdf(0) < 1.0, "{}", l.p_bsdf(0));
     }
 
     #[test]

@@ -216,34 +216,10 @@ fn cached_regions_pass_chi_square_with_coloured_throughput() {
 /// share particles, so the median is no better than one region) within 3.
 #[test]
 fn cached_regions_estimate_the_particle_density() {
-    use footprint::guide::cache::{GuideCache, Seed};
-    use footprint::guide::particle_map::ParticleInput;
-    let mut rng = Rng::new(8, 8, 8);
     let n = 40_000;
     let w = Rgb::new(2.0, 1.0, 0.5) / n as f32;
-    let particles: Vec<ParticleInput> = (0..n)
-        .map(|_| ParticleInput {
-            position: Vec3::new(rng.uniform(), rng.uniform(), 0.0),
-            dir: (Vec3::Z + 0.5 * sample_uniform_sphere(rng.uniform2())).normalize(),
-            normal: Vec3::Z,
-            weight: w,
-            depth: 2,
-            specular_chain: false,
-        })
-        .collect();
-    let map = ParticleMap::build(MapKind::Photons, &particles);
     // Seeds in the middle, so that every region's disc lies inside the square.
-    let seeds: Vec<Seed> = (0..400)
-        .map(|_| Seed {
-            position: Vec3::new(0.3 + 0.4 * rng.uniform(), 0.3 + 0.4 * rng.uniform(), 0.0),
-            normal: Vec3::Z,
-        })
-        .collect();
-    let params = GuideParams {
-        region_seeds: 40,
-        ..GuideParams::default()
-    };
-    let cache = GuideCache::build(&map, &FootprintGuide, &seeds, &params, 0.2);
+    let (cache, _) = square_cache(&mut Rng::new(8, 8, 8), n, w, 0.3, 0.4);
     let expected = w * n as f32; // per unit area: the square's area is 1
     let mut ratios = Vec::new();
     for r in cache.regions().iter().filter(|r| r.distribution.is_some()) {
@@ -273,4 +249,122 @@ fn cached_regions_estimate_the_particle_density() {
         ratios.len()
     );
     assert!((median - 1.0).abs() < 3.0 * sd, "median ratio {median}");
+}
+
+/// A region that learned BSDF sampling alone (`p_BSDF = 1`, where the guide does not pay for
+/// its time: `src/guide/selection.rs`) is not guided: `prepare` leaves the vertex to the
+/// BSDF, whose density `sample`, `pdf` and the combined image's `mis_pdf` all report, while
+/// its particle density still reaches Russian roulette; a neighbouring region that learned
+/// 0.9 keeps guiding with the mixture. Learned from records whose guide density equals the
+/// BSDF's (a guide no better than the BSDF) and from ones where it is ten times it.
+#[test]
+fn a_region_that_learned_bsdf_sampling_alone_is_not_guided() {
+    use footprint::guide::selection::{MIN_RECORDS, SelectionLearner, SelectionRecord};
+    let (cache, params) = square_cache(&mut Rng::new(9, 9, 9), 20_000, Rgb::splat(1e-4), 0.2, 0.6);
+    let points = [Vec3::new(0.3, 0.3, 0.0), Vec3::new(0.7, 0.7, 0.0)];
+    let [alone, guided] = points.map(|x| cache.lookup_index(x, Vec3::Z).expect("a region"));
+    assert_ne!(alone, guided, "the two points must lie in two regions");
+    let learner = SelectionLearner::new(cache.regions().len(), params.p_bsdf);
+    let records = |region: u32, pdf_guide_w: f32| SelectionRecord {
+        region,
+        x2: 1.0,
+        pdf_bsdf_w: 1.0,
+        pdf_guide_w,
+        pdf_w: 0.5 + 0.5 * pdf_guide_w,
+    };
+    let mut r: Vec<SelectionRecord> = (0..MIN_RECORDS).map(|_| records(alone, 1.0)).collect();
+    r.extend((0..MIN_RECORDS).map(|_| records(guided, 10.0)));
+    learner.absorb(&r);
+    assert_eq!(learner.p_bsdf(alone), 1.0);
+    assert!(learner.p_bsdf(guided) < 1.0);
+    let sampler = GuidedSampler {
+        source: GuideSource::Cached(&cache),
+        params: params.clone(),
+        soft_glossy_max: 100.0,
+        selection: Some(&learner),
+    };
+    let bsdf = Bsdf::new(
+        Lobes::Diffuse {
+            kd: Rgb::splat(0.5),
+        },
+        Vec3::Z,
+        Vec3::Z,
+    );
+    for (x, region) in points.into_iter().zip([alone, guided]) {
+        let at = ScatterPoint {
+            p: x,
+            bsdf: &bsdf,
+            wo: dir(40.0, 60.0),
+            mode: TransportMode::Radiance,
+            throughput: Rgb::ONE,
+        };
+        let mut state = SamplerState::default();
+        sampler.prepare(&at, &mut state);
+        assert_eq!(state.guided(), region == guided, "region {region}");
+        assert!(
+            state.region_density().is_some(),
+            "region {region}: roulette loses its estimate"
+        );
+        assert_eq!(state.fallbacks, 0, "a learned choice is not a fallback");
+        let mut rng = Rng::new(3, 0, 0);
+        let mut differs = false;
+        for _ in 0..200 {
+            let s = sampler.sample(&at, &state, &mut rng).expect("a direction");
+            let bsdf_pdf = bsdf.pdf(at.wo, s.wi);
+            let close = |a: f32, b: f32| (a - b).abs() <= 1e-4 * b.abs().max(1e-6);
+            let pdf = sampler.pdf(&at, &state, s.wi);
+            let mis = sampler.mis_pdf(&at, s.wi);
+            assert!(close(s.pdf_w, pdf), "sample {} vs pdf {pdf}", s.pdf_w);
+            assert!(close(s.pdf_w, mis), "sample {} vs mis_pdf {mis}", s.pdf_w);
+            if region == alone {
+                assert!(close(s.pdf_w, bsdf_pdf), "{} vs {bsdf_pdf}", s.pdf_w);
+                assert!(s.guided.is_none(), "no record from an unguided vertex");
+            } else {
+                differs |= !close(s.pdf_w, bsdf_pdf);
+            }
+        }
+        assert!(
+            region == alone || differs,
+            "the guided region must draw from the mixture"
+        );
+    }
+}
+
+/// A photon map of `n` particles of weight `w` spread uniformly over the unit square of the
+/// plane `z = 0` (directions about its normal), and its guide cache (footprints, 40 seeds per
+/// region) over 400 seeds uniform in the square `[lo, lo + span]²`.
+fn square_cache(
+    rng: &mut Rng,
+    n: usize,
+    w: Rgb,
+    lo: f32,
+    span: f32,
+) -> (footprint::guide::cache::GuideCache, GuideParams) {
+    use footprint::guide::cache::{GuideCache, Seed};
+    use footprint::guide::particle_map::ParticleInput;
+    let particles: Vec<ParticleInput> = (0..n)
+        .map(|_| ParticleInput {
+            position: Vec3::new(rng.uniform(), rng.uniform(), 0.0),
+            dir: (Vec3::Z + 0.5 * sample_uniform_sphere(rng.uniform2())).normalize(),
+            normal: Vec3::Z,
+            weight: w,
+            depth: 2,
+            specular_chain: false,
+        })
+        .collect();
+    let map = ParticleMap::build(MapKind::Photons, &particles);
+    let seeds: Vec<Seed> = (0..400)
+        .map(|_| Seed {
+            position: Vec3::new(lo + span * rng.uniform(), lo + span * rng.uniform(), 0.0),
+            normal: Vec3::Z,
+        })
+        .collect();
+    let params = GuideParams {
+        region_seeds: 40,
+        ..GuideParams::default()
+    };
+    (
+        GuideCache::build(&map, &FootprintGuide, &seeds, &params, 0.2),
+        params,
+    )
 }
