@@ -42,14 +42,6 @@ fn per_event() -> GuideParams {
     }
 }
 
-/// Parameters with `p_BSDF` learned per region (the default), for the tests about it.
-fn learning() -> GuideParams {
-    GuideParams {
-        learn_p_bsdf: true,
-        ..Default::default()
-    }
-}
-
 /// Regions whose `p_BSDF` a render learned.
 fn learned_regions(r: &footprint_integrators::RenderResult) -> usize {
     r.learned_p_bsdf
@@ -179,7 +171,9 @@ fn guided_passes_agree_with_the_reference() {
 #[test]
 fn learned_selection_agrees_with_the_reference_on_cornell() {
     let scene = small("cornell", 32, 32, 20_000);
-    let params = learning();
+    // The default parameters learn `p_BSDF` per region.
+    let params = GuideParams::default();
+    assert!(params.learn_p_bsdf);
     for m in ["pt-footprint", "lt-footprint"] {
         let probe = render(
             &scene,
@@ -356,8 +350,8 @@ fn guided_images_do_not_depend_on_the_thread_count() {
         ("combined-footprint", per_event(), 2),
         // 128 passes: guided Russian roulette (the default) ends paths sooner, so regions
         // gather the records learning waits for more slowly (48 passes sufficed without it).
-        ("pt-footprint", learning(), 128),
-        ("lt-footprint", learning(), 128),
+        ("pt-footprint", GuideParams::default(), 128),
+        ("lt-footprint", GuideParams::default(), 128),
     ] {
         let o = RenderOptions {
             guide_params: params,
