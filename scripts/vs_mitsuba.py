@@ -52,6 +52,9 @@ BUNDLED = {
     # `ptracer` and `path` differ there (tests/mitsuba.rs compares footprint's light tracer).
     "bumpmap-ptracer": dict(scene="bumpmap", integrator="ptracer", resx=32, resy=32, rfilter="box", max_depth=3,
                             batches=32, spp=512),
+    "normalmap": dict(resx=32, resy=32, rfilter="box", max_depth=3, batches=32, spp=512),
+    "normalmap-ptracer": dict(scene="normalmap", integrator="ptracer", resx=32, resy=32, rfilter="box", max_depth=3,
+                              batches=32, spp=512),
     "meshes": dict(resx=48, resy=48, rfilter="box", max_depth=4, batches=32, spp=256),
 }
 

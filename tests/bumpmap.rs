@@ -10,7 +10,7 @@ mod common;
 use common::chi2::ChiSquareTest;
 use common::sidak;
 use footprint::Rgb;
-use footprint::bsdf::bump::{Bump, BumpMap};
+use footprint::bsdf::bump::{Bump, BumpMap, NormalSource};
 use footprint::bsdf::material::{Material, MaterialKind};
 use footprint::bsdf::microfacet::Microfacet;
 use footprint::bsdf::{Bsdf, Lobes, TransportMode};
@@ -93,7 +93,7 @@ fn bumped(kind: MaterialKind, tilt_deg: f32, phi_deg: f32, nested_two_sided: boo
     let mut bsdf = Bsdf::new(Lobes::new(&m, m.kd, m.ks), Vec3::Z, Vec3::Z);
     let map = BumpMap {
         texture: 0,
-        scale: 1.0,
+        source: NormalSource::Height { scale: 1.0 },
         flip_invalid_normals: true,
         shadowing: true,
         nested_two_sided,
@@ -335,7 +335,7 @@ fn the_importer_reads_mitsubas_structure_and_refuses_the_rest() {
         ),
         (
             format!(r#"<bsdf type="bumpmap">{tex}<bsdf type="dielectric"/></bsdf>"#),
-            "bump-mapped dielectric",
+            "a dielectric inside a bumpmap",
         ),
         (
             format!(r#"<bsdf type="bumpmap">{tex}<emitter type="point"/>{diffuse}</bsdf>"#),
@@ -344,6 +344,21 @@ fn the_importer_reads_mitsubas_structure_and_refuses_the_rest() {
         (
             format!(r#"<bsdf type="bumpmap">{tex}<float name="scael" value="2"/>{diffuse}</bsdf>"#),
             "scael",
+        ),
+        (
+            format!(r#"<bsdf type="normalmap">{diffuse}</bsdf>"#),
+            "normalmap needs a nested <texture> (the normal map)",
+        ),
+        (
+            format!(r#"<bsdf type="normalmap">{tex}<bsdf type="dielectric"/></bsdf>"#),
+            "a dielectric inside a normalmap",
+        ),
+        (
+            // A normal map has no scale.
+            format!(
+                r#"<bsdf type="normalmap">{tex}<float name="scale" value="2"/>{diffuse}</bsdf>"#
+            ),
+            "scale",
         ),
     ];
     for (i, (bsdf, want)) in cases.iter().enumerate() {
@@ -379,6 +394,21 @@ fn the_importer_reads_mitsubas_structure_and_refuses_the_rest() {
         .find(|m| m.name == "Bumped")
         .expect("the bumped material");
     let b = bumped.bump.expect("a bump");
-    assert!(b.nested_two_sided && !bumped.two_sided && b.scale == 1.0);
+    assert!(
+        b.nested_two_sided && !bumped.two_sided && b.source == NormalSource::Height { scale: 1.0 }
+    );
     assert!(b.flip_invalid_normals && b.shadowing);
+    // A normal map: the same adapter with the texture's colours as normals, its options read.
+    let xml = format!(
+        r#"<bsdf type="normalmap" id="Mapped">{tex}<boolean name="use_shadowing_function" value="false"/>{diffuse}</bsdf>
+  <shape type="rectangle"><ref id="Mapped"/></shape>"#
+    );
+    let scene = load(&plane_scene("normals", &xml));
+    let mapped = scene.materials.iter().find(|m| m.name == "Mapped");
+    let b = mapped
+        .expect("the mapped material")
+        .bump
+        .expect("a normal map");
+    assert_eq!(b.source, NormalSource::Normals);
+    assert!(b.flip_invalid_normals && !b.shadowing && !b.nested_two_sided);
 }

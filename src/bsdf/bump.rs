@@ -34,13 +34,14 @@ use crate::bsdf::surface::{Bsdf, BsdfSample, TransportMode};
 use crate::math::{Frame, Rgb};
 use glam::{Vec2, Vec3};
 
-/// A material's bump map: the height texture and Mitsuba's `bumpmap` parameters.
+/// A material's bump or normal map: the texture, what it holds, and the parameters Mitsuba's
+/// `bumpmap` and `normalmap` share.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BumpMap {
-    /// Index into the scene's textures: the height field (its luminance).
+    /// Index into the scene's textures.
     pub texture: u32,
-    /// Multiplies the height gradient (Mitsuba's `scale`, default 1; any sign).
-    pub scale: f32,
+    /// What the texture holds: heights or normals.
+    pub source: NormalSource,
     /// Mitsuba's `flip_invalid_normals` (default true).
     pub flip_invalid_normals: bool,
     /// Mitsuba's `use_shadowing_function` (default true): the terminator term `G`.
@@ -49,6 +50,17 @@ pub struct BumpMap {
     /// side of the bumped normal `wo` lies. A `twosided` around the `bumpmap` is the
     /// material's own `two_sided` and acts on the unbumped frame.
     pub nested_two_sided: bool,
+}
+
+/// Where a bump map's normal comes from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum NormalSource {
+    /// Mitsuba's `bumpmap`: a height field (the texture's luminance), whose gradient times
+    /// `scale` (default 1; any sign) tilts the normal ([`bumped_normal`]).
+    Height { scale: f32 },
+    /// Mitsuba's `normalmap` (`src/bsdfs/normalmap.cpp`): the texture's colour `c` holds the
+    /// normal `2c - 1` in the shading frame whose tangent follows `∂p/∂u` ([`mapped_normal`]).
+    Normals,
 }
 
 /// The bump at one surface point: the bumped normal in the unbumped shading frame.
@@ -87,6 +99,20 @@ pub fn bumped_normal(ns: Vec3, ng: Vec3, dp_du: Vec3, dp_dv: Vec3, grad_uv: Vec2
     let dv = ns * (grad_uv.y - ns.dot(dp_dv)) + dp_dv;
     let n = du.cross(dv).try_normalize()?;
     Some(if ng.dot(n) < 0.0 { -n } else { n })
+}
+
+/// The normal of a normal map in world space (Mitsuba's `NormalMap::frame`): the colour `c`
+/// read as `n = 2c - 1` in the shading frame of the hit as Mitsuba builds it
+/// (`SurfaceInteraction::initialize_sh_frame`): `z` the shading normal `ns`, `x` the
+/// partial `∂p/∂u` made orthogonal to it, `y = z × x`. Neither turned to a side nor
+/// flipped here: the flip of `flip_invalid_normals` depends on the arriving direction
+/// ([`Bump::normal_for`]). `None` where the partial gives no tangent (Mitsuba's frame is
+/// then NaN) or the colour no direction.
+pub fn mapped_normal(ns: Vec3, dp_du: Vec3, c: Rgb) -> Option<Vec3> {
+    let s = (dp_du - ns * ns.dot(dp_du)).try_normalize()?;
+    let t = ns.cross(s);
+    let n = c * 2.0 - Vec3::ONE;
+    (s * n.x + t * n.y + ns * n.z).try_normalize()
 }
 
 impl Bump {
@@ -292,6 +318,28 @@ mod tests {
         );
     }
 
+    /// A normal map's colour is a normal in the frame of `ns` and `∂p/∂u`: the flat colour
+    /// (0.5, 0.5, 1) gives `ns`; red tilts toward `∂p/∂u` (made orthogonal to `ns`), green
+    /// toward `ns × ∂p/∂u`; a length-free colour is normalised; a partial along `ns` gives no
+    /// tangent and no normal.
+    #[test]
+    fn normal_map_colours_in_the_tangent_frame() {
+        let ns = Vec3::new(0.0, 0.6, 0.8);
+        let dp_du = Vec3::new(2.0, 0.3, 0.0); // not orthogonal to ns
+        let s = (dp_du - ns * ns.dot(dp_du)).normalize();
+        let t = ns.cross(s);
+        let flat = mapped_normal(ns, dp_du, Rgb::new(0.5, 0.5, 1.0)).unwrap();
+        assert!(flat.abs_diff_eq(ns, 1e-6), "{flat}");
+        let red = mapped_normal(ns, dp_du, Rgb::new(1.0, 0.5, 0.5)).unwrap();
+        assert!(red.abs_diff_eq(s, 1e-6), "{red}");
+        let green = mapped_normal(ns, dp_du, Rgb::new(0.5, 1.0, 0.5)).unwrap();
+        assert!(green.abs_diff_eq(t, 1e-6), "{green}");
+        let tilted = mapped_normal(ns, dp_du, Rgb::new(0.75, 0.5, 0.75)).unwrap();
+        assert!(tilted.abs_diff_eq((s + ns).normalize(), 1e-6), "{tilted}");
+        assert_eq!(mapped_normal(ns, ns * 3.0, Rgb::new(0.6, 0.5, 1.0)), None);
+        assert_eq!(mapped_normal(ns, dp_du, Rgb::splat(0.5)), None);
+    }
+
     /// The flip mirrors the bumped normal about the shading normal exactly where `wo` lies on
     /// different sides of the two, and the shadowing term is 1 at normal incidence and falls
     /// toward grazing.
@@ -300,7 +348,7 @@ mod tests {
         let n = Vec3::new(0.5, 0.0, 0.75f32.sqrt());
         let map = BumpMap {
             texture: 0,
-            scale: 1.0,
+            source: NormalSource::Height { scale: 1.0 },
             flip_invalid_normals: true,
             shadowing: true,
             nested_two_sided: false,

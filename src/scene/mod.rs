@@ -18,7 +18,7 @@ pub mod obj;
 pub mod texture;
 pub mod toml_file;
 
-use crate::bsdf::bump::{Bump, BumpMap, bumped_normal, uv_partials};
+use crate::bsdf::bump::{Bump, BumpMap, NormalSource, bumped_normal, mapped_normal, uv_partials};
 use crate::bsdf::material::{Material, MaterialKind};
 use crate::bsdf::{Bsdf, Lobes, SurfaceLobes};
 use crate::features::{Features, General};
@@ -401,24 +401,35 @@ impl Scene {
         bsdf
     }
 
-    /// The bump of `map` at `hit` for the BSDF `bsdf` there ([`crate::bsdf::bump`]): the
-    /// height gradient at the hit's texture coordinates, the triangle's partials `∂p/∂u`,
-    /// `∂p/∂v` in Mitsuba's texture coordinates (`(u, 1 - v)` of the stored ones; the
-    /// importer stores barycentric ones on a mesh without any, as Mitsuba parametrises it).
-    /// `None` where the gradient is zero (the shading frame stays exactly the surface's) or
-    /// the parametrisation is degenerate (no normal to tilt to).
+    /// The bump of `map` at `hit` for the BSDF `bsdf` there ([`crate::bsdf::bump`]), from
+    /// the triangle's partials `∂p/∂u`, `∂p/∂v` in Mitsuba's texture coordinates (`(u, 1 - v)`
+    /// of the stored ones; the importer stores barycentric ones on a mesh without any, as
+    /// Mitsuba parametrises it) and the texture at the hit's coordinates: a height field's
+    /// gradient, or a normal map's colour. `None` where the gradient is zero (the shading
+    /// frame stays exactly the surface's) or the parametrisation is degenerate (no normal to
+    /// tilt to).
     fn bump_at(&self, map: &BumpMap, hit: &SurfaceHit, bsdf: &Bsdf) -> Option<Bump> {
-        let grad = self.textures[map.texture as usize].luminance_gradient(hit.uv)? * map.scale;
-        if grad == Vec2::ZERO {
-            return None;
-        }
+        let texture = &self.textures[map.texture as usize];
+        let grad = match map.source {
+            NormalSource::Height { scale } => {
+                let grad = texture.luminance_gradient(hit.uv)? * scale;
+                if grad == Vec2::ZERO {
+                    return None;
+                }
+                Some(grad)
+            }
+            NormalSource::Normals => None,
+        };
         let g = &self.triangles[hit.triangle as usize];
         let uv = self.shading[hit.triangle as usize]
             .uvs
             .map(|uv| uv.map(|t| Vec2::new(t.x, 1.0 - t.y)))
             .unwrap_or([Vec2::ZERO, Vec2::X, Vec2::Y]);
         let (dp_du, dp_dv) = uv_partials(g.e1, g.e2, uv);
-        let n = bumped_normal(hit.ns, bsdf.ng, dp_du, dp_dv, grad)?;
+        let n = match grad {
+            Some(grad) => bumped_normal(hit.ns, bsdf.ng, dp_du, dp_dv, grad)?,
+            None => mapped_normal(hit.ns, dp_du, texture.lookup(hit.uv))?,
+        };
         Some(Bump::new(map, &bsdf.frame, n))
     }
 

@@ -37,7 +37,7 @@ const NAMED_IOR: &[(&str, f32)] = &[
     ("diamond", 2.419),
 ];
 
-const BSDFS: &str = "diffuse, twosided, bumpmap, dielectric, thindielectric, roughdielectric, conductor, roughconductor, plastic, roughplastic";
+const BSDFS: &str = "diffuse, twosided, bumpmap, normalmap, dielectric, thindielectric, roughdielectric, conductor, roughconductor, plastic, roughplastic";
 
 impl<'a, 'd> Builder<'a, 'd> {
     fn ior(&self, p: &Props<'a, 'd>, name: &str, default: f32) -> Result<f32> {
@@ -215,8 +215,8 @@ impl<'a, 'd> Builder<'a, 'd> {
                     [] => return Err(self.doc.err(node, "twosided needs a nested <bsdf>")),
                 }
             }
-            "bumpmap" => {
-                let mut bumped = self.bumpmap(node, &p)?;
+            "bumpmap" | "normalmap" => {
+                let mut bumped = self.bumpmap(node, &p, kind == "normalmap")?;
                 bumped.name = m.name;
                 m = bumped;
             }

@@ -1,7 +1,8 @@
-//! The `bumpmap` BSDF: one nested texture (the height field, under any name) and one nested
-//! BSDF, as Mitsuba 3's adapter takes them (`src/bsdfs/bumpmap.cpp`), with `scale`,
-//! `flip_invalid_normals` and `use_shadowing_function`. The material is the nested BSDF's
-//! with a [`BumpMap`] ([`crate::bsdf::bump`]).
+//! The `bumpmap` and `normalmap` BSDFs: one nested texture (the height field or the normal
+//! map, under any name; Mitsuba's `normalmap` names it `normalmap`) and one nested BSDF, as
+//! Mitsuba 3's adapters take them (`src/bsdfs/bumpmap.cpp`, `src/bsdfs/normalmap.cpp`), with
+//! `flip_invalid_normals` and `use_shadowing_function`, and a bump map's `scale`. The
+//! material is the nested BSDF's with a [`BumpMap`] ([`crate::bsdf::bump`]).
 //!
 //! An `id` on the nested BSDF names the nested BSDF alone: a `<ref>` to it gets the BSDF
 //! without the bump map, as in Mitsuba 3 (its scene loader resolves the reference to the
@@ -9,14 +10,25 @@
 
 use super::builder::Builder;
 use super::xml::Props;
-use crate::bsdf::bump::BumpMap;
+use crate::bsdf::bump::{BumpMap, NormalSource};
 use crate::bsdf::material::{Material, MaterialKind};
 use crate::error::Result;
 use roxmltree::Node;
 
 impl<'a, 'd> Builder<'a, 'd> {
-    /// The material of a `<bsdf type="bumpmap">` element whose properties are `p`.
-    pub(super) fn bumpmap(&mut self, node: Node<'a, 'a>, p: &Props<'a, 'd>) -> Result<Material> {
+    /// The material of a `<bsdf type="bumpmap">` element whose properties are `p`, or of a
+    /// `<bsdf type="normalmap">` with `normals`.
+    pub(super) fn bumpmap(
+        &mut self,
+        node: Node<'a, 'a>,
+        p: &Props<'a, 'd>,
+        normals: bool,
+    ) -> Result<Material> {
+        let (plugin, what) = if normals {
+            ("normalmap", "the normal map")
+        } else {
+            ("bumpmap", "the height field")
+        };
         let mut bsdfs = Vec::new();
         let mut textures = p.named_textures();
         for n in &p.unnamed {
@@ -27,18 +39,23 @@ impl<'a, 'd> Builder<'a, 'd> {
                 other => {
                     return Err(self.doc.err(
                         *n,
-                        format!("a bumpmap holds one <texture> and one <bsdf>, not <{other}>"),
+                        format!("a {plugin} holds one <texture> and one <bsdf>, not <{other}>"),
                     ));
                 }
             }
         }
         let nested = match bsdfs.as_slice() {
             [b] => *b,
-            [] => return Err(self.doc.err(node, "bumpmap needs a nested <bsdf>")),
-            [_, second, ..] => {
+            [] => {
                 return Err(self
                     .doc
-                    .err(*second, "bumpmap takes one nested <bsdf>, this is a second"));
+                    .err(node, format!("{plugin} needs a nested <bsdf>")));
+            }
+            [_, second, ..] => {
+                return Err(self.doc.err(
+                    *second,
+                    format!("{plugin} takes one nested <bsdf>, this is a second"),
+                ));
             }
         };
         let height = match textures.as_slice() {
@@ -46,38 +63,49 @@ impl<'a, 'd> Builder<'a, 'd> {
             [] => {
                 return Err(self
                     .doc
-                    .err(node, "bumpmap needs a nested <texture> (the height field)"));
+                    .err(node, format!("{plugin} needs a nested <texture> ({what})")));
             }
             [_, second, ..] => {
                 return Err(self.doc.err(
                     *second,
-                    "bumpmap takes one nested <texture>, this is a second",
+                    format!("{plugin} takes one nested <texture>, this is a second"),
                 ));
             }
         };
         let kind = self.kind(height)?;
         if kind != "bitmap" {
+            let why = if normals {
+                "footprint reads normal maps from images".to_string()
+            } else {
+                format!("Mitsuba's '{kind}' has no gradient")
+            };
             return Err(self.doc.err(
                 height,
-                format!("a bumpmap's height field must be a 'bitmap' texture: Mitsuba's '{kind}' has no gradient"),
+                format!("a {plugin}'s texture must be a 'bitmap' texture, not '{kind}': {why}"),
             ));
         }
-        let scale = p.float_or("scale", 1.0)?;
+        let source = if normals {
+            NormalSource::Normals
+        } else {
+            NormalSource::Height {
+                scale: p.float_or("scale", 1.0)?,
+            }
+        };
         let flip_invalid_normals = p.boolean("flip_invalid_normals")?.unwrap_or(true);
         let shadowing = p.boolean("use_shadowing_function")?.unwrap_or(true);
         let mut m = self.bsdf(nested)?;
         let transmits = matches!(m.kind, MaterialKind::Glass | MaterialKind::ThinGlass);
         if transmits || m.bump.is_some() {
             let what = if transmits {
-                "a bump-mapped dielectric"
+                format!("a dielectric inside a {plugin}")
             } else {
-                "a bumpmap inside a bumpmap"
+                format!("a {plugin} inside a bumpmap or normalmap")
             };
             self.doc.unsupported(
                 nested,
-                what,
-                "bumpmap around a reflecting BSDF",
-                "the nested BSDF without this bump map",
+                &what,
+                &format!("{plugin} around a reflecting BSDF"),
+                &format!("the nested BSDF without this {plugin}"),
             )?;
             return Ok(m);
         }
@@ -86,7 +114,7 @@ impl<'a, 'd> Builder<'a, 'd> {
         };
         m.bump = Some(BumpMap {
             texture,
-            scale,
+            source,
             flip_invalid_normals,
             shadowing,
             nested_two_sided: m.two_sided,

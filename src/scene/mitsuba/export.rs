@@ -12,6 +12,7 @@
 //! Mitsuba's definitions, so a comparison of the two renderers on it is exact either way.
 
 use crate::Rgb;
+use crate::bsdf::bump::NormalSource;
 use crate::bsdf::material::{Material, MaterialKind};
 use crate::bsdf::microfacet::Microfacet;
 use crate::error::{Error, Result};
@@ -434,10 +435,18 @@ fn bsdf_xml(
             } else {
                 inner
             };
-            let map = colour_or_texture(scene, "map", Rgb::ONE, Some(b.texture), tf, out)?;
+            let (plugin, name, scale) = match b.source {
+                NormalSource::Height { scale } => (
+                    "bumpmap",
+                    "map",
+                    format!("<float name=\"scale\" value=\"{scale:?}\"/>"),
+                ),
+                NormalSource::Normals => ("normalmap", "normalmap", String::new()),
+            };
+            let map = colour_or_texture(scene, name, Rgb::ONE, Some(b.texture), tf, out)?;
             format!(
-                "<bsdf type=\"bumpmap\">{map}<float name=\"scale\" value=\"{:?}\"/><boolean name=\"flip_invalid_normals\" value=\"{}\"/><boolean name=\"use_shadowing_function\" value=\"{}\"/>{nested}</bsdf>",
-                b.scale, b.flip_invalid_normals, b.shadowing
+                "<bsdf type=\"{plugin}\">{map}{scale}<boolean name=\"flip_invalid_normals\" value=\"{}\"/><boolean name=\"use_shadowing_function\" value=\"{}\"/>{nested}</bsdf>",
+                b.flip_invalid_normals, b.shadowing
             )
         }
         None => inner,
