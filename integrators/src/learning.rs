@@ -14,7 +14,6 @@
 //! does not hold. It is the same objective for a path that reaches one pixel, and an upper
 //! bound (the sum's square over the sum of squares) otherwise.
 
-use crate::walk::Vertex;
 use footprint::Rgb;
 use footprint::guide::sampler::{DirectionSample, GuidedDraw};
 use footprint::guide::selection::SelectionRecord;
@@ -39,9 +38,8 @@ const MAX_LEARNING_VERTICES: usize = 8;
 struct LearningVertex {
     draw: GuidedDraw,
     pdf_w: f32,
-    /// Luminance of the throughput arriving at the vertex.
-    beta: f32,
-    /// Luminance of the path's contributions found since the vertex scattered.
+    /// Luminance of the path's contributions found since the vertex scattered: `β X`, what
+    /// came back through the vertex (`footprint::guide::selection`, weighed by `β²`).
     returned: f32,
 }
 
@@ -56,7 +54,7 @@ impl Learning {
 
     /// A guided vertex scattered.
     #[inline]
-    pub fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
+    pub fn scattered(&mut self, s: &DirectionSample) {
         let Some(draw) = s.guided.filter(|_| self.on) else {
             return;
         };
@@ -64,7 +62,6 @@ impl Learning {
             self.vertices[self.len] = LearningVertex {
                 draw,
                 pdf_w: s.pdf_w,
-                beta: luminance(v.beta),
                 returned: 0.0,
             };
             self.len += 1;
@@ -105,7 +102,7 @@ impl Learning {
     }
 
     /// The path ended: a record per followed vertex through which light came back, with
-    /// `X` = the return per unit throughput at the vertex (split branches' included).
+    /// what came back through it (split branches' included).
     pub fn finish(&mut self, out: &mut Vec<SelectionRecord>) {
         out.append(&mut self.done);
         out.extend(
@@ -120,15 +117,75 @@ impl LearningVertex {
     /// The vertex's record, when light came back through it.
     fn record(&self) -> Option<SelectionRecord> {
         let d = self.draw;
-        (self.returned > 0.0 && self.beta > 0.0).then(|| {
-            let x = self.returned / self.beta;
-            SelectionRecord {
-                region: d.region,
-                x2: x * x,
-                pdf_bsdf_w: d.pdf_bsdf_w,
-                pdf_guide_w: d.pdf_guide_w,
-                pdf_w: self.pdf_w,
-            }
+        (self.returned > 0.0).then(|| SelectionRecord {
+            region: d.region,
+            returned2: self.returned * self.returned,
+            pdf_bsdf_w: d.pdf_bsdf_w,
+            pdf_guide_w: d.pdf_guide_w,
+            pdf_w: self.pdf_w,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    fn guided(region: u32) -> DirectionSample {
+        DirectionSample {
+            wi: Vec3::Z,
+            pdf_w: 0.75,
+            weight: Rgb::splat(1.0),
+            rr_weight: Rgb::splat(1.0),
+            delta: false,
+            guided: Some(GuidedDraw {
+                region,
+                pdf_bsdf_w: 0.5,
+                pdf_guide_w: 1.0,
+            }),
+        }
+    }
+
+    /// Each record holds the square of what came back through its vertex in the path's
+    /// estimate (`β X`, not the return per unit throughput `X`): the pixel's variance
+    /// weighs a vertex by `β²`. Returns found before a vertex scattered are not its own.
+    #[test]
+    fn records_what_came_back_through_each_vertex() {
+        let mut l = Learning::new(true);
+        l.credit(Rgb::splat(5.0)); // before any guided vertex: nobody's
+        l.scattered(&guided(3));
+        l.credit(Rgb::splat(0.5));
+        l.scattered(&guided(4));
+        l.credit(Rgb::splat(0.25));
+        let mut out = Vec::new();
+        l.finish(&mut out);
+        assert_eq!(out.len(), 2);
+        assert_eq!((out[0].region, out[0].returned2), (3, 0.75 * 0.75));
+        assert_eq!((out[1].region, out[1].returned2), (4, 0.25 * 0.25));
+        assert_eq!(
+            (out[0].pdf_bsdf_w, out[0].pdf_guide_w, out[0].pdf_w),
+            (0.5, 1.0, 0.75)
+        );
+    }
+
+    /// A vertex through which nothing came back teaches nothing (its sums would gain 0),
+    /// and a path that does not learn follows nothing.
+    #[test]
+    fn vertices_without_return_and_paths_that_do_not_learn_make_no_record() {
+        let mut l = Learning::new(true);
+        l.scattered(&guided(0));
+        l.credit(Rgb::splat(1.0));
+        l.scattered(&guided(1));
+        let mut out = Vec::new();
+        l.finish(&mut out);
+        assert_eq!(out.len(), 1);
+        assert_eq!(out[0].region, 0);
+        let mut off = Learning::new(false);
+        off.scattered(&guided(0));
+        off.credit(Rgb::splat(1.0));
+        let mut out = Vec::new();
+        off.finish(&mut out);
+        assert!(out.is_empty());
     }
 }

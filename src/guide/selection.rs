@@ -10,10 +10,16 @@
 //! `α_0` estimates `M(α)` for *every* `α` by importance sampling:
 //! `M̂(α) = g² / (p_α · p_α0) = X² · p_α0 / p_α`, where `X = g / p_α0` is what the path
 //! brought back through that vertex per unit throughput arriving there (the sum of the
-//! path's later contributions divided by its throughput at the vertex; luminance). So
-//! every guided vertex whose path found light adds `X² p_α0 / p_α` to each candidate's
-//! sum, and the region takes the candidate with the smallest sum once it has
-//! [`MIN_RECORDS`] such vertices.
+//! path's later contributions divided by its throughput `β` at the vertex; luminance).
+//!
+//! **Weighed by what the vertex is worth to the image.** A pixel's variance gathers each
+//! of its paths' vertices' as `β² Var[X]` (the law of total variance over the path's
+//! choices), so a region's vertices count by their `β²`: every guided vertex whose path
+//! found light adds `(β X)² p_α0 / p_α` to each candidate's sum, `β X` being simply what
+//! came back through the vertex in the path's estimate. Counted unweighted, a vertex deep
+//! in a dim path would weigh as much as a first bounce seen by the camera, and the region
+//! would choose for the vertices that matter least. The region takes the candidate with
+//! the smallest sum once it has [`MIN_RECORDS`] such vertices.
 //!
 //! **Guiding where it pays for its time.** A guided vertex costs more than an unguided one
 //! (the region's distribution read at the sampled direction and at the light sample's,
@@ -59,8 +65,9 @@ pub const MIN_RECORDS: u64 = 512;
 #[derive(Clone, Copy, Debug)]
 pub struct SelectionRecord {
     pub region: u32,
-    /// `X²`: the squared return per unit throughput (see the module doc).
-    pub x2: f32,
+    /// `(β X)²`: the square of what came back through the vertex in the path's estimate
+    /// (luminance; see the module doc).
+    pub returned2: f32,
     /// Densities per steradian of the sampled direction: the BSDF's, the guide's and the
     /// mixture's the direction was drawn with.
     pub pdf_bsdf_w: f32,
@@ -68,7 +75,7 @@ pub struct SelectionRecord {
     pub pdf_w: f32,
 }
 
-/// A region's sums: `Σ X² p_α0 / p_α` per candidate, and how many records made them.
+/// A region's sums: `Σ (β X)² p_α0 / p_α` per candidate, and how many records made them.
 #[derive(Clone, Copy, Debug, Default)]
 struct RegionSums {
     moments: [f64; CANDIDATES.len()],
@@ -111,8 +118,8 @@ impl SelectionLearner {
             let Some(s) = sums.get_mut(r.region as usize) else {
                 continue;
             };
-            let valid = r.x2.is_finite()
-                && r.x2 > 0.0
+            let valid = r.returned2.is_finite()
+                && r.returned2 > 0.0
                 && r.pdf_w.is_finite()
                 && r.pdf_w > 0.0
                 && r.pdf_bsdf_w.is_finite()
@@ -128,7 +135,7 @@ impl SelectionLearner {
                 // pdf_w > 0; BSDF sampling alone cannot draw a direction of BSDF density 0
                 // that brought light back: its second moment is unbounded.
                 *m += if p_a > 0.0 {
-                    r.x2 as f64 * r.pdf_w as f64 / p_a as f64
+                    r.returned2 as f64 * r.pdf_w as f64 / p_a as f64
                 } else {
                     f64::INFINITY
                 };
@@ -206,7 +213,7 @@ mod tests {
         (0..n)
             .map(|_| SelectionRecord {
                 region: 0,
-                x2: 1.0,
+                returned2: 1.0,
                 pdf_bsdf_w,
                 pdf_guide_w,
                 pdf_w: 0.5 * pdf_bsdf_w + 0.5 * pdf_guide_w,
@@ -273,7 +280,7 @@ mod tests {
         l.absorb(&records(MIN_RECORDS - 1, 0.01, 1.0));
         assert_eq!(l.p_bsdf(0), 0.5, "one record short");
         let mut bad = records(4, 0.01, 1.0);
-        bad[0].x2 = f32::NAN;
+        bad[0].returned2 = f32::NAN;
         bad[1].pdf_w = 0.0;
         bad[2].pdf_guide_w = f32::INFINITY;
         bad[3].region = 7;

@@ -107,7 +107,7 @@ fn cached_regions_pass_chi_square_with_coloured_throughput() {
         let records: Vec<SelectionRecord> = (0..MIN_RECORDS)
             .map(|_| SelectionRecord {
                 region: i,
-                x2: 1.0,
+                returned2: 1.0,
                 pdf_bsdf_w: 0.01,
                 pdf_guide_w: 1.0,
                 pdf_w: 0.505,
@@ -267,7 +267,7 @@ fn a_region_that_learned_bsdf_sampling_alone_is_not_guided() {
     let learner = SelectionLearner::new(cache.regions().len(), params.p_bsdf);
     let records = |region: u32, pdf_guide_w: f32| SelectionRecord {
         region,
-        x2: 1.0,
+        returned2: 1.0,
         pdf_bsdf_w: 1.0,
         pdf_guide_w,
         pdf_w: 0.5 + 0.5 * pdf_guide_w,

@@ -315,7 +315,7 @@ impl<W: LightShare, F: Features> Visitor for LightVisitor<'_, '_, W, F> {
         if self.share.is_some() {
             self.weights.scattered(v, s);
         }
-        self.learning.scattered(v, s);
+        self.learning.scattered(s);
     }
 
     // ---- Guided splitting: each branch starts from the same running weights ----

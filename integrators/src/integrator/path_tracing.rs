@@ -367,7 +367,7 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
     }
 
     fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
-        self.learning.scattered(v, s);
+        self.learning.scattered(s);
         if S::ACTIVE {
             self.share.scattered(v, s);
         }
