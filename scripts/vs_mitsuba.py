@@ -56,6 +56,9 @@ BUNDLED = {
     "normalmap-ptracer": dict(scene="normalmap", integrator="ptracer", resx=32, resy=32, rfilter="box", max_depth=3,
                               batches=32, spp=512),
     "meshes": dict(resx=48, resy=48, rfilter="box", max_depth=4, batches=32, spp=256),
+    # Cut-outs: Mitsuba's `volpath`, which passes them as footprint does (its `path` loses
+    # light seen through them: docs/mitsuba.md, "Cut-outs").
+    "cutout": dict(integrator="volpath", resx=48, resy=48, rfilter="box", max_depth=6, batches=32, spp=256),
 }
 
 # The public scenes kept in the repository (scenes/public/<name>/scene.xml, unchanged but for

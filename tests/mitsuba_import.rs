@@ -1004,3 +1004,92 @@ fn version_0_5_files_upgrade_as_mitsuba_3() {
     .to_string();
     assert!(e.contains("'diffuseReflectance'"), "{e}");
 }
+
+/// Mitsuba's `mask`: the nested BSDF with its opacity (a number, a colour's or spectrum's
+/// luminance, a texture; default 0.5), through `twosided` and references; written back as a
+/// mask; bad opacities and nestings name their line.
+#[test]
+fn masks_are_read_and_written() {
+    let body = r#"<bsdf type="mask" id="leaf">
+    <texture name="opacity" type="checkerboard"><rgb name="color0" value="1"/><rgb name="color1" value="0"/></texture>
+    <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.5, 0.1"/></bsdf></bsdf>
+  </bsdf>
+  <shape type="rectangle"><ref id="leaf"/></shape>
+  <shape type="rectangle"><transform name="to_world"><translate z="-1"/></transform>
+    <bsdf type="mask"><spectrum name="opacity" value="0.612066"/><bsdf type="diffuse"/></bsdf></shape>
+  <shape type="rectangle"><transform name="to_world"><translate z="-2"/></transform>
+    <bsdf type="mask"><bsdf type="roughconductor"/></bsdf></shape>
+  <shape type="rectangle"><transform name="to_world"><translate z="-3"/></transform>
+    <bsdf type="diffuse"/></shape>"#;
+    let d = dir_with("mask", &[("scene.xml", &scene_xml(body))]);
+    let s = load(&d, &[], false).unwrap();
+    let leaf = s.materials.iter().find(|m| m.name == "leaf").unwrap();
+    assert!(leaf.two_sided && leaf.kind == MaterialKind::Diffuse);
+    assert_eq!((leaf.opacity, leaf.opacity_texture.is_some()), (1.0, true));
+    let blinds = s
+        .materials
+        .iter()
+        .find(|m| m.opacity_texture.is_none() && m.opacity < 0.7)
+        .unwrap();
+    assert!((blinds.opacity - 0.612066).abs() < 1e-5 && !blinds.two_sided);
+    let metal = s
+        .materials
+        .iter()
+        .find(|m| m.kind == MaterialKind::RoughConductor)
+        .unwrap();
+    assert_eq!(metal.opacity, 0.5, "Mitsuba's default opacity");
+    assert!(s.materials.iter().any(|m| !m.is_masked()));
+    assert!(s.effects.masks && s.effects.textures);
+
+    // Written back and read again: the same opacities.
+    let out = dir_with("mask-export", &[]);
+    footprint::scene::mitsuba::export::export(&s, &d.join("scene.xml"), &out).unwrap();
+    let back = load(&out, &[], false).unwrap();
+    let opacities = |s: &Scene| {
+        let mut o: Vec<_> = s
+            .materials
+            .iter()
+            .filter(|m| !m.emits())
+            .map(|m| (m.opacity.to_bits(), m.opacity_texture.is_some()))
+            .collect();
+        o.sort();
+        o
+    };
+    assert_eq!(opacities(&back), opacities(&s));
+
+    // Bad input: the element's line and what is wrong.
+    let bad = |name: &str, props: &str| {
+        load_err(
+            name,
+            &format!("<shape type=\"cube\">\n<bsdf type=\"mask\">{props}</bsdf></shape>"),
+        )
+    };
+    let e = bad(
+        "mask-range",
+        r#"<float name="opacity" value="1.5"/><bsdf type="diffuse"/>"#,
+    );
+    assert!(
+        e.contains("scene.xml:15:") && e.contains("opacity must be in [0, 1]"),
+        "{e}"
+    );
+    let e = bad("mask-none", r#"<float name="opacity" value="0.5"/>"#);
+    assert!(
+        e.contains("scene.xml:15:") && e.contains("exactly one nested <bsdf>, found 0"),
+        "{e}"
+    );
+    let e = bad("mask-glass", r#"<bsdf type="dielectric"/>"#);
+    assert!(
+        e.contains("scene.xml:15:") && e.contains("a mask around a dielectric"),
+        "{e}"
+    );
+    // A mask on a light is refused (Mitsuba's emitter ignores it; footprint's walks would not).
+    let e = load_err(
+        "mask-light",
+        r#"<shape type="cube"><bsdf type="mask"><bsdf type="diffuse"/></bsdf>
+        <emitter type="area"><rgb name="radiance" value="1"/></emitter></shape>"#,
+    );
+    assert!(
+        e.contains("scene.xml:14:") && e.contains("a mask on an emitting shape"),
+        "{e}"
+    );
+}

@@ -39,42 +39,14 @@ const TF: [f32; 3] = [0.9, 0.7, 0.5];
 /// alone, as one bright pixel).
 const LIGHT: Vec3 = Vec3::new(2.0, -0.5, 2.0);
 
-/// The scene, written to a folder of the test's own (`tag`): tests run in parallel.
+/// The scene (`common::sheet_over_floor`) with the coloured pane.
 fn scene(tag: &str) -> Scene {
-    let dir =
-        std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("thin-glass-{tag}"));
-    std::fs::create_dir_all(&dir).unwrap();
-    let xml = format!(
-        r#"<scene version="3.0.0">
-    <sensor type="perspective">
-        <float name="fov" value="40"/>
-        <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
-        <film type="hdrfilm">
-            <integer name="width" value="{SIDE}"/><integer name="height" value="{SIDE}"/>
-            <rfilter type="box"/>
-        </film>
-    </sensor>
-    <shape type="rectangle">
-        <transform name="to_world"><scale value="50"/></transform>
-        <bsdf type="diffuse"><rgb name="reflectance" value="{RHO}"/></bsdf>
-    </shape>
-    <shape type="rectangle">
-        <transform name="to_world"><scale value="50"/><translate z="1"/></transform>
-        <bsdf type="thindielectric">
-            <float name="int_ior" value="1.5"/>
-            <rgb name="specular_transmittance" value="{}, {}, {}"/>
-        </bsdf>
-    </shape>
-    <emitter type="point">
-        <point name="position" x="{}" y="{}" z="{}"/>
-        <rgb name="intensity" value="{INTENSITY}"/>
-    </emitter>
-</scene>"#,
-        TF[0], TF[1], TF[2], LIGHT.x, LIGHT.y, LIGHT.z
+    let pane = format!(
+        r#"<bsdf type="thindielectric"><float name="int_ior" value="1.5"/>
+            <rgb name="specular_transmittance" value="{}, {}, {}"/></bsdf>"#,
+        TF[0], TF[1], TF[2]
     );
-    let path = dir.join("scene.xml");
-    std::fs::write(&path, xml).unwrap();
-    footprint::scene::load::load_scene(&path).expect("the pane scene loads")
+    common::sheet_over_floor(&format!("pane-{tag}"), SIDE, RHO, &pane, LIGHT, INTENSITY)
 }
 
 /// The pane's straight transmission at `cos` (what a path passing it carries).
@@ -144,34 +116,8 @@ fn connections_through_a_thin_pane_carry_its_transmittance() {
     let checks = methods.len() * want.len() * 3;
     let crit = t_critical(sidak(0.01, checks), (renders - 1) as f64);
     for m in methods {
-        let runs: Vec<Vec<[f64; 3]>> = (0..renders)
-            .map(|r| {
-                let o = RenderOptions {
-                    method: Method::parse(m).unwrap(),
-                    spp: 16,
-                    max_depth: 4,
-                    seed: 700 + r as u64,
-                    ..Default::default()
-                };
-                let out = render(&scene, &o, |_| {});
-                assert!(out.image.all_valid(), "{m}: invalid pixel");
-                blocks(&out.image.pixels)
-            })
-            .collect();
-        let mut worst = 0.0f64;
-        for (b, w) in want.iter().enumerate() {
-            for c in 0..3 {
-                let xs: Vec<f64> = runs.iter().map(|r| r[b][c]).collect();
-                let (mean, se) = common::mean_stderr(&xs);
-                let t = (mean - w[c]) / se.max(1e-12 * w[c]);
-                worst = worst.max(t.abs());
-                assert!(
-                    t.abs() < crit,
-                    "{m}: block {b} channel {c}: {mean:.5} against {:.5} (t = {t:.2}, critical {crit:.2})",
-                    w[c]
-                );
-            }
-        }
+        let runs = common::runs_of(&scene, m, (renders, 16, 4, 700), |img| blocks(&img.pixels));
+        let worst = common::assert_runs_match(m, &runs, &want, crit);
         eprintln!("{m}: largest |t| {worst:.2} (critical {crit:.2})");
     }
 }
@@ -204,11 +150,7 @@ fn the_light_tracer_sees_the_floor_through_the_pane() {
 /// `scenes/panes`: a diffuse room lit by an area light, seen only through two coloured
 /// panes. Light tracing (camera connections through the panes), the combined image and the
 /// guided methods agree with unguided path tracing per region of the image and channel.
-///
-/// Bound: `R` renders per method with independent seeds; per region and channel, Welch's t
-/// of the two methods' region means against the two-sided Student-t critical value at 0.01
-/// (Welch–Satterthwaite degrees of freedom, taken at the smaller `R - 1` here), Šidák-corrected
-/// over every region, channel and compared method.
+/// (Bound: `common::assert_integrators_agree`.)
 #[test]
 fn every_integrator_sees_the_room_through_the_panes_alike() {
     let mut scene =
@@ -218,58 +160,6 @@ fn every_integrator_sees_the_room_through_the_panes_alike() {
     scene.maps.photons = 20_000;
     scene.maps.importons = 20_000;
     assert!(scene.effects.thin_glass);
-    let (renders, side) = (10, 4);
-    let regions = |m: &str| -> Vec<Vec<[f64; 3]>> {
-        (0..renders)
-            .map(|r| {
-                let o = RenderOptions {
-                    method: Method::parse(m).unwrap(),
-                    spp: 8,
-                    max_depth: 8,
-                    seed: 900 + r as u64,
-                    ..Default::default()
-                };
-                let out = render(&scene, &o, |_| {});
-                assert!(out.image.all_valid(), "{m}: invalid pixel");
-                common::region_means(&out.image, side)
-            })
-            .collect()
-    };
-    let pt = regions("pt-bsdf");
-    // Guided too: particles pass the panes as paths do (small maps: only agreement matters).
-    let others = [
-        "lt-bsdf",
-        "combined-bsdf",
-        "pt-footprint",
-        "lt-footprint",
-        "combined-footprint",
-    ];
-    let n = (side * side) as usize;
-    let crit = t_critical(sidak(0.01, others.len() * n * 3), (renders - 1) as f64);
-    let mean_of = |runs: &[Vec<[f64; 3]>]| -> f64 {
-        runs.iter()
-            .map(|r| r.iter().map(|c| c.iter().sum::<f64>()).sum::<f64>())
-            .sum::<f64>()
-    };
-    for m in others {
-        let runs = regions(m);
-        let mut worst = 0.0f64;
-        for g in 0..n {
-            for c in 0..3 {
-                let a: Vec<f64> = pt.iter().map(|r| r[g][c]).collect();
-                let b: Vec<f64> = runs.iter().map(|r| r[g][c]).collect();
-                let ((ma, sa), (mb, sb)) = (common::mean_stderr(&a), common::mean_stderr(&b));
-                let t = (mb - ma) / (sa * sa + sb * sb).sqrt().max(1e-12);
-                worst = worst.max(t.abs());
-                assert!(
-                    t.abs() < crit,
-                    "{m} against pt-bsdf: region {g} channel {c}: {mb:.5} against {ma:.5} (t = {t:.2}, critical {crit:.2})"
-                );
-            }
-        }
-        eprintln!(
-            "{m}: image mean {:.4} of pt-bsdf's, largest |t| {worst:.2} (critical {crit:.2})",
-            mean_of(&runs) / mean_of(&pt)
-        );
-    }
+    // Guided too: particles pass them as paths do (small maps: only agreement matters).
+    common::assert_integrators_agree(&scene, (10, 8, 8), 4);
 }

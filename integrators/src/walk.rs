@@ -58,11 +58,11 @@ use footprint::bsdf::{Bsdf, TransportMode};
 use footprint::guide::sampler::{DirectionSample, GuidedSampler, SamplerState, ScatterPoint};
 use footprint::math::luminance;
 use footprint::rng::Rng;
-use footprint::scene::Scene;
 use footprint::scene::features::Features;
 #[allow(unused_imports)] // the doc links
 use footprint::scene::features::Specialisation;
 use footprint::scene::geometry::{SurfaceHit, spawn_origin};
+use footprint::scene::{MAX_CUTOUT_CROSSINGS, Scene};
 use glam::Vec3;
 
 /// The rule: survival probability for throughput `beta` of a walk that started at `beta0`.
@@ -254,7 +254,7 @@ fn walk_from<'a, V: Visitor>(
     let guided_rr = sampler.params.guided_rr;
     let split_max = sampler.params.guided_split.max(1);
     for depth in p.depth..=start.max_vertex_depth {
-        let Some(hit) = scene.intersect_with::<V::F>(p.origin, p.dir, f32::INFINITY) else {
+        let Some(hit) = next_hit::<V::F>(scene, &mut p, rng) else {
             state.escapes += 1;
             visitor.escaped(p.dir, p.beta, depth, &p.from);
             return;
@@ -400,6 +400,38 @@ fn walk_from<'a, V: Visitor>(
     }
 }
 
+/// The surface the path's ray meets next, passing cut-outs: where a surface's opacity
+/// `α` is under 1 (Mitsuba's `mask`), the path scatters there with probability `α` and
+/// passes straight through otherwise, its throughput unchanged (the cut-out lets `1 - α`
+/// through, the probability it is passed with). A pass is no vertex and no segment: the
+/// visitors see the path arrive from the vertex before, as a connection through the
+/// cut-out sees it (`Scene::transmittance` multiplies by `1 - α`), and the surface where the
+/// path does scatter scatters with its whole BSDF, the `α` of Mitsuba's `α f` being the
+/// probability of getting there. The choice draws independent bits, not a dimension of the
+/// sequence. `None`: the ray left the scene (or crossed `MAX_CUTOUT_CROSSINGS` cut-outs).
+#[inline]
+fn next_hit<F: Features>(scene: &Scene, p: &mut PathState, rng: &mut Rng) -> Option<SurfaceHit> {
+    let mut hit = scene.intersect_with::<F>(p.origin, p.dir, f32::INFINITY)?;
+    if !scene.effects.masks {
+        return Some(hit);
+    }
+    for _ in 0..MAX_CUTOUT_CROSSINGS {
+        let opacity = scene.opacity(&hit);
+        if opacity >= 1.0 || uniform_bits(rng.next_u64()) < opacity {
+            return Some(hit);
+        }
+        p.origin = scene.spawn_origin(hit.p, hit.ng, p.dir);
+        hit = scene.intersect_with::<F>(p.origin, p.dir, f32::INFINITY)?;
+    }
+    None
+}
+
+/// A uniform number in [0, 1) from the top 24 of 64 random bits.
+#[inline]
+fn uniform_bits(bits: u64) -> f32 {
+    (bits >> 40) as f32 * (1.0 / 16_777_216.0)
+}
+
 /// Samples the next direction at `v` (or takes the one `drawn` there) and moves `p` along
 /// it with `share` of the throughput (one branch of `1 / share`); false when the path ends
 /// there.
@@ -444,7 +476,7 @@ fn scatter<'a, V: Visitor>(
 pub fn split_count(ratio: f32, max: u32, bits: u64) -> u32 {
     let r = ratio.min(max as f32);
     let whole = r.floor();
-    let u = (bits >> 40) as f32 * (1.0 / 16_777_216.0);
+    let u = uniform_bits(bits);
     let n = whole as u32 + u32::from(u < r - whole);
     n.clamp(1, max)
 }

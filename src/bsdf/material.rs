@@ -107,6 +107,12 @@ pub struct Material {
     pub rough_plastic: Option<&'static RoughPlasticTables>,
     /// A height field that tilts the shading normal (Mitsuba `bumpmap` around this material).
     pub bump: Option<BumpMap>,
+    /// The surface's opacity in [0, 1] (Mitsuba `mask` around this material): where it is
+    /// under 1 the surface is a cut-out that light passes straight through with probability
+    /// `1 - opacity` ([`crate::scene::Scene::opacity`]). 1: opaque.
+    pub opacity: f32,
+    /// Index into the scene's textures whose luminance multiplies `opacity`.
+    pub opacity_texture: Option<u32>,
 }
 
 impl Default for Material {
@@ -130,6 +136,8 @@ impl Default for Material {
             ke: Rgb::ZERO,
             rough_plastic: None,
             bump: None,
+            opacity: 1.0,
+            opacity_texture: None,
         }
     }
 }
@@ -199,6 +207,11 @@ impl Material {
         if !(self.ni > 0.0) {
             self.ni = 1.5;
         }
+        self.opacity = if self.opacity.is_nan() {
+            1.0
+        } else {
+            self.opacity.clamp(0.0, 1.0)
+        };
         self
     }
 
@@ -220,6 +233,12 @@ impl Material {
 
     pub fn emits(&self) -> bool {
         self.ke.max_element() > 0.0
+    }
+
+    /// True when light may pass the surface where it is cut out (an opacity under 1, or an
+    /// opacity texture).
+    pub fn is_masked(&self) -> bool {
+        self.opacity < 1.0 || self.opacity_texture.is_some()
     }
 }
 

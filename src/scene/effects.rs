@@ -16,6 +16,9 @@ pub struct Effects {
     /// Thin dielectric sheets (Mitsuba `thindielectric`): connections pass through them
     /// with their transmittance ([`crate::scene::Scene::transmittance`]).
     pub thin_glass: bool,
+    /// Cut-out surfaces (Mitsuba `mask`): light passes them straight through where their
+    /// opacity is under 1 ([`crate::scene::Scene::opacity`]).
+    pub masks: bool,
     /// Transmission that changes colour (glass with a non-grey `Tf`).
     pub coloured_filtering: bool,
     pub textures: bool,
@@ -84,8 +87,12 @@ impl Effects {
                     e.coloured_filtering |= t.max_element() - t.min_element() > 1e-4;
                 }
             }
-            // A bump map's height field is a texture too.
-            e.textures |= m.kd_texture.is_some() || m.ks_texture.is_some() || m.bump.is_some();
+            e.masks |= m.is_masked();
+            // A bump map's height field and an opacity map are textures too.
+            e.textures |= m.kd_texture.is_some()
+                || m.ks_texture.is_some()
+                || m.bump.is_some()
+                || m.opacity_texture.is_some();
         }
         for l in lights {
             match l {
@@ -100,14 +107,22 @@ impl Effects {
         e
     }
 
+    /// True when a connection may pass a surface: thin dielectric sheets or cut-outs
+    /// ([`crate::scene::Scene::transmittance`]).
+    #[inline]
+    pub fn passes_light(&self) -> bool {
+        self.thin_glass || self.masks
+    }
+
     /// `(name, present)` for every effect, in a fixed order.
-    pub fn list(&self) -> [(&'static str, bool); 13] {
+    pub fn list(&self) -> [(&'static str, bool); 14] {
         [
             ("diffuse", self.diffuse),
             ("glossy", self.glossy),
             ("specular reflection", self.specular_reflection),
             ("refraction", self.refraction),
             ("coloured filtering", self.coloured_filtering),
+            ("cut-outs", self.masks),
             ("textures", self.textures),
             ("shading normals", self.shading_normals),
             ("area lights", self.area_lights),

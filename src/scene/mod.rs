@@ -22,7 +22,7 @@ use crate::bsdf::bump::{Bump, BumpMap, NormalSource, bumped_normal, mapped_norma
 use crate::bsdf::material::{Material, MaterialKind};
 use crate::bsdf::{Bsdf, Lobes, SurfaceLobes};
 use crate::features::{Features, General};
-use crate::math::Rgb;
+use crate::math::{Rgb, luminance};
 use crate::sampling::Distribution1D;
 use crate::scene::accel::Accel;
 use crate::scene::camera::Camera;
@@ -45,6 +45,11 @@ pub const LIGHT_CHOICE_OWN_NUMBER: f32 = 1.0 / 256.0;
 /// beyond any scene (f32 steps there are 10⁸ m), short of where products of coordinates
 /// overflow. The readers name the field or line past it; [`Scene::new`] checks the whole.
 pub const MAX_COORDINATE: f32 = 1e15;
+
+/// Most cut-out surfaces ([`Scene::opacity`] under 1) a ray passes before it counts as
+/// blocked: a bound on the work of one ray through foliage, far above what a scene's leaves
+/// stack up to (a ray through 1024 layers each letting half through carries 2⁻¹⁰²⁴).
+pub const MAX_CUTOUT_CROSSINGS: u32 = 1024;
 
 /// Counts reported after loading.
 #[derive(Clone, Debug, Default)]
@@ -401,6 +406,24 @@ impl Scene {
         bsdf
     }
 
+    /// The opacity of the surface at `hit` (Mitsuba's `mask`: the material's constant times
+    /// its opacity texture's luminance, as Mitsuba's `eval_1`, clamped to [0, 1]): the
+    /// probability that light arriving there scatters, `1 - opacity` that it passes straight
+    /// through. 1 on every unmasked surface, and without masks in the scene.
+    #[inline]
+    pub fn opacity(&self, hit: &SurfaceHit) -> f32 {
+        if !self.effects.masks {
+            return 1.0;
+        }
+        let m = &self.materials[hit.material as usize];
+        match m.opacity_texture {
+            Some(t) => {
+                (m.opacity * luminance(self.textures[t as usize].lookup(hit.uv))).clamp(0.0, 1.0)
+            }
+            None => m.opacity,
+        }
+    }
+
     /// The bump of `map` at `hit` for the BSDF `bsdf` there ([`crate::bsdf::bump`]), from
     /// the triangle's partials `∂p/∂u`, `∂p/∂v` in Mitsuba's texture coordinates (`(u, 1 - v)`
     /// of the stored ones; the importer stores barycentric ones on a mesh without any, as
@@ -483,9 +506,11 @@ impl Scene {
     /// The fraction of light that goes from `p` (normal `ng`) to `target` (normal `target_n`
     /// on a surface, `None` for a point) in a straight line: zero when an opaque surface is
     /// in the way or more than `max_sheets` thin dielectric sheets are, else the product of
-    /// the sheets' [`Bsdf::pass_through`], and the number of sheets crossed (each a segment
-    /// of the path, as sampling through it makes). Without thin sheets in the scene, the
-    /// shadow ray of [`Scene::visible`].
+    /// the sheets' [`Bsdf::pass_through`] and of `1 - opacity` of the cut-out surfaces
+    /// crossed ([`Scene::opacity`]), and the number of sheets crossed (each a segment of the
+    /// path, as sampling through it makes; a cut-out is no segment, as a walk passes it
+    /// without a vertex). Without thin sheets and masks in the scene, the shadow ray of
+    /// [`Scene::visible`].
     pub fn transmittance(
         &self,
         p: Vec3,
@@ -494,24 +519,34 @@ impl Scene {
         target_n: Option<Vec3>,
         max_sheets: u32,
     ) -> (Rgb, u32) {
-        if !self.effects.thin_glass {
+        if !self.effects.passes_light() {
             let v = self.visible(p, ng, target, target_n);
             return (if v { Rgb::ONE } else { Rgb::ZERO }, 0);
         }
         let mut t = Rgb::ONE;
+        let (mut sheets, mut cutouts) = (0, 0);
         let (mut from, mut from_n) = (p, ng);
-        for sheets in 0..=max_sheets {
+        loop {
             let Some((o, dir, t_max)) = self.shadow_segment(from, from_n, target, target_n) else {
                 return (Rgb::ZERO, 0);
             };
             let Some(hit) = self.intersect(o, dir, t_max) else {
                 return (t, sheets);
             };
-            if sheets == max_sheets {
-                break;
+            let opacity = self.opacity(&hit);
+            if opacity < 1.0 {
+                cutouts += 1;
+                if cutouts > MAX_CUTOUT_CROSSINGS {
+                    break;
+                }
+                t *= 1.0 - opacity;
+            } else {
+                if sheets == max_sheets {
+                    break;
+                }
+                sheets += 1;
+                t *= self.bsdf(&hit).pass_through(-dir);
             }
-            let bsdf = self.bsdf(&hit);
-            t *= bsdf.pass_through(-dir);
             if t.max_element() <= 0.0 {
                 break;
             }

@@ -190,3 +190,153 @@ pub fn assert_same_exr(a: &std::path::Path, b: &std::path::Path, what: &str) {
     }
     assert!(worst < 1e-6, "{what}: relative difference {worst:e}");
 }
+
+/// `renders` renders of `method` on `scene` at `spp` and `max_depth`, seeds from `seed0`,
+/// each reduced by `reduce` (block or region means); every pixel checked valid.
+pub fn runs_of(
+    scene: &footprint::scene::Scene,
+    method: &str,
+    (renders, spp, max_depth, seed0): (usize, u32, u32, u64),
+    reduce: impl Fn(&footprint::film::Image) -> Vec<[f64; 3]>,
+) -> Vec<Vec<[f64; 3]>> {
+    use footprint_integrators::{Method, RenderOptions, render};
+    (0..renders)
+        .map(|r| {
+            let o = RenderOptions {
+                method: Method::parse(method).unwrap(),
+                spp,
+                max_depth,
+                seed: seed0 + r as u64,
+                ..Default::default()
+            };
+            let out = render(scene, &o, |_| {});
+            assert!(out.image.all_valid(), "{method}: invalid pixel");
+            reduce(&out.image)
+        })
+        .collect()
+}
+
+/// Asserts that the mean over `runs` of every block and channel lies within `crit` standard
+/// errors (estimated from the runs' spread) of `want`; returns the largest |t|.
+pub fn assert_runs_match(label: &str, runs: &[Vec<[f64; 3]>], want: &[[f64; 3]], crit: f64) -> f64 {
+    let mut worst = 0.0f64;
+    for (b, w) in want.iter().enumerate() {
+        for c in 0..3 {
+            let xs: Vec<f64> = runs.iter().map(|r| r[b][c]).collect();
+            let (mean, se) = mean_stderr(&xs);
+            let t = (mean - w[c]) / se.max(1e-12 * w[c]);
+            worst = worst.max(t.abs());
+            assert!(
+                t.abs() < crit,
+                "{label}: block {b} channel {c}: {mean:.5} against {:.5} (t = {t:.2}, critical {crit:.2})",
+                w[c]
+            );
+        }
+    }
+    worst
+}
+
+/// Asserts that two sets of runs agree per block and channel: Welch's t of their means
+/// within `crit`; returns the largest |t|.
+pub fn assert_runs_agree(label: &str, a: &[Vec<[f64; 3]>], b: &[Vec<[f64; 3]>], crit: f64) -> f64 {
+    let mut worst = 0.0f64;
+    for g in 0..a[0].len() {
+        for c in 0..3 {
+            let xa: Vec<f64> = a.iter().map(|r| r[g][c]).collect();
+            let xb: Vec<f64> = b.iter().map(|r| r[g][c]).collect();
+            let ((ma, sa), (mb, sb)) = (mean_stderr(&xa), mean_stderr(&xb));
+            let t = (mb - ma) / (sa * sa + sb * sb).sqrt().max(1e-12);
+            worst = worst.max(t.abs());
+            assert!(
+                t.abs() < crit,
+                "{label}: region {g} channel {c}: {mb:.5} against {ma:.5} (t = {t:.2}, critical {crit:.2})"
+            );
+        }
+    }
+    worst
+}
+
+/// The scene of the analytic sheet tests (`tests/thin_glass.rs`, `tests/cutouts.rs`): a
+/// `side` x `side` camera at (0, 0, 4) looking down (fov 40°, box filter), a diffuse floor of
+/// reflectance `rho` at z = 0 and a sheet of BSDF `sheet_bsdf` (Mitsuba XML) at z = 1, both
+/// 100 x 100, and a point light of `intensity` at `light`; written to a folder of its own
+/// (`tag`: tests run in parallel) and loaded.
+pub fn sheet_over_floor(
+    tag: &str,
+    side: u32,
+    rho: f32,
+    sheet_bsdf: &str,
+    light: glam::Vec3,
+    intensity: f32,
+) -> footprint::scene::Scene {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("sheet-{tag}"));
+    std::fs::create_dir_all(&dir).unwrap();
+    let xml = format!(
+        r#"<scene version="3.0.0">
+    <sensor type="perspective">
+        <float name="fov" value="40"/>
+        <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm">
+            <integer name="width" value="{side}"/><integer name="height" value="{side}"/>
+            <rfilter type="box"/>
+        </film>
+    </sensor>
+    <shape type="rectangle">
+        <transform name="to_world"><scale value="50"/></transform>
+        <bsdf type="diffuse"><rgb name="reflectance" value="{rho}"/></bsdf>
+    </shape>
+    <shape type="rectangle">
+        <transform name="to_world"><scale value="50"/><translate z="1"/></transform>
+        {sheet_bsdf}
+    </shape>
+    <emitter type="point">
+        <point name="position" x="{}" y="{}" z="{}"/>
+        <rgb name="intensity" value="{intensity}"/>
+    </emitter>
+</scene>"#,
+        light.x, light.y, light.z
+    );
+    let path = dir.join("scene.xml");
+    std::fs::write(&path, xml).unwrap();
+    footprint::scene::load::load_scene(&path).expect("the sheet scene loads")
+}
+
+/// Asserts that light tracing, the combined image and the guided methods agree with
+/// unguided path tracing on `scene` per region (`side` x `side`) and channel, over `renders`
+/// renders each at `spp` and `max_depth` (seeds from 900); prints each method's image mean
+/// over path tracing's and largest |t|.
+///
+/// Bound: per region and channel, Welch's t of the two methods' region means against the
+/// two-sided Student-t critical value at 0.01 (Welch–Satterthwaite degrees of freedom, taken
+/// at the smaller `renders - 1`), Šidák-corrected over every region, channel and compared
+/// method.
+pub fn assert_integrators_agree(
+    scene: &footprint::scene::Scene,
+    (renders, spp, max_depth): (usize, u32, u32),
+    side: u32,
+) {
+    let regions = |m: &str| {
+        runs_of(scene, m, (renders, spp, max_depth, 900), |img| {
+            region_means(img, side)
+        })
+    };
+    let pt = regions("pt-bsdf");
+    let others = [
+        "lt-bsdf",
+        "combined-bsdf",
+        "pt-footprint",
+        "lt-footprint",
+        "combined-footprint",
+    ];
+    let n = (side * side) as usize;
+    let crit = t_critical(sidak(0.01, others.len() * n * 3), (renders - 1) as f64);
+    let total = |runs: &[Vec<[f64; 3]>]| -> f64 { runs.iter().flatten().flatten().sum() };
+    for m in others {
+        let runs = regions(m);
+        let worst = assert_runs_agree(&format!("{m} against pt-bsdf"), &pt, &runs, crit);
+        eprintln!(
+            "{m}: image mean {:.4} of pt-bsdf's, largest |t| {worst:.2} (critical {crit:.2})",
+            total(&runs) / total(&pt)
+        );
+    }
+}

@@ -37,7 +37,7 @@ const NAMED_IOR: &[(&str, f32)] = &[
     ("diamond", 2.419),
 ];
 
-const BSDFS: &str = "diffuse, twosided, bumpmap, normalmap, dielectric, thindielectric, roughdielectric, conductor, roughconductor, plastic, roughplastic";
+const BSDFS: &str = "diffuse, twosided, mask, bumpmap, normalmap, dielectric, thindielectric, roughdielectric, conductor, roughconductor, plastic, roughplastic";
 
 impl<'a, 'd> Builder<'a, 'd> {
     fn ior(&self, p: &Props<'a, 'd>, name: &str, default: f32) -> Result<f32> {
@@ -215,6 +215,11 @@ impl<'a, 'd> Builder<'a, 'd> {
                     [] => return Err(self.doc.err(node, "twosided needs a nested <bsdf>")),
                 }
             }
+            "mask" => {
+                let mut masked = self.mask(node, &p)?;
+                masked.name = m.name;
+                m = masked;
+            }
             "bumpmap" | "normalmap" => {
                 let mut bumped = self.bumpmap(node, &p, kind == "normalmap")?;
                 bumped.name = m.name;
@@ -315,6 +320,62 @@ impl<'a, 'd> Builder<'a, 'd> {
         p.finish(&format!("bsdf '{kind}'"))?;
         let m = m.sanitized();
         self.material_of.insert(node.id(), m.clone());
+        Ok(m)
+    }
+
+    /// Mitsuba's `mask`: the one nested BSDF, cut out where `opacity` (a number, the
+    /// luminance of a colour, or a texture's luminance; default 0.5) is under 1. A mask in a mask multiplies the
+    /// opacities where at most one is a texture. Light passes a cut-out in a straight line,
+    /// so a mask around a dielectric (which bends or splits it) is unsupported.
+    fn mask(&mut self, node: Node<'a, 'a>, p: &Props<'a, 'd>) -> Result<Material> {
+        let nested: Vec<Node> = p
+            .unnamed
+            .iter()
+            .map(|n| self.deref(*n))
+            .collect::<Result<Vec<_>>>()?
+            .into_iter()
+            .filter(|n| n.has_tag_name("bsdf"))
+            .collect();
+        let [inner] = nested.as_slice() else {
+            return Err(self.doc.err(
+                node,
+                format!(
+                    "mask needs exactly one nested <bsdf>, found {}",
+                    nested.len()
+                ),
+            ));
+        };
+        let mut m = self.bsdf(*inner)?;
+        // A number, a colour or a spectrum (its luminance, as Mitsuba's `eval_1`), or a
+        // texture.
+        let (colour, texture) = self.color_or_texture(p, "opacity", Rgb::splat(0.5))?;
+        let opacity = crate::math::luminance(colour);
+        if !(0.0..=1.0).contains(&opacity) {
+            let n = p.get("opacity").unwrap_or(node);
+            return Err(self
+                .doc
+                .err(n, format!("opacity must be in [0, 1], got {opacity}")));
+        }
+        if matches!(
+            m.kind,
+            MaterialKind::Glass | MaterialKind::ThinGlass | MaterialKind::RoughGlass
+        ) {
+            self.doc.unsupported(
+                node,
+                "a mask around a dielectric",
+                "masks around reflecting BSDFs",
+                "the dielectric without its mask",
+            )?;
+            return Ok(m);
+        }
+        if texture.is_some() && m.opacity_texture.is_some() {
+            return Err(self.doc.err(
+                node,
+                "a textured mask inside a textured mask is not supported",
+            ));
+        }
+        m.opacity *= opacity;
+        m.opacity_texture = m.opacity_texture.or(texture);
         Ok(m)
     }
 

@@ -451,15 +451,34 @@ fn bsdf_xml(
         }
         None => inner,
     };
-    Ok(if m.two_sided {
-        format!("  <bsdf type=\"twosided\" id=\"{id}\">{inner}</bsdf>")
+    let inner = if m.two_sided {
+        format!("<bsdf type=\"twosided\">{inner}</bsdf>")
     } else {
-        // One-sided: the id goes on the BSDF itself.
-        format!(
-            "  {}",
-            inner.replacen("<bsdf ", &format!("<bsdf id=\"{id}\" "), 1)
-        )
-    })
+        inner
+    };
+    // A cut-out wraps everything else, as Mitsuba's `mask` takes its opacity at the surface.
+    let inner = if m.is_masked() {
+        let opacity = match m.opacity_texture {
+            Some(t) if m.opacity == 1.0 => {
+                colour_or_texture(scene, "opacity", Rgb::ONE, Some(t), tf, out)?
+            }
+            Some(_) => {
+                return Err(Error::Other(format!(
+                    "export: material '{}': an opacity texture scaled by {}; Mitsuba's bitmap has no scale",
+                    m.name, m.opacity
+                )));
+            }
+            None => format!("<float name=\"opacity\" value=\"{:?}\"/>", m.opacity),
+        };
+        format!("<bsdf type=\"mask\">{opacity}{inner}</bsdf>")
+    } else {
+        inner
+    };
+    // The id goes on the outermost BSDF.
+    Ok(format!(
+        "  {}",
+        inner.replacen("<bsdf ", &format!("<bsdf id=\"{id}\" "), 1)
+    ))
 }
 
 /// The triangles `tris` as an OBJ (shared vertices deduplicated exactly).

@@ -1,5 +1,9 @@
-//! The `<integrator>` element: the method (`path` as footprint's path tracer, `ptracer` as
-//! its light tracer) and the path depth.
+//! The `<integrator>` element: the method (`path` and `volpath` as footprint's path tracer,
+//! `ptracer` as its light tracer) and the path depth. On surfaces Mitsuba's `volpath` is its
+//! `path` that passes cut-outs (`mask`) and thin sheets without a vertex, with next-event
+//! estimation through them, as footprint's walks and connections do for cut-outs; scenes
+//! with masks are checked against it (`path` weighs light seen through a cut-out by MIS
+//! against a light sample the cut-out blocks, and loses part of it).
 
 use super::builder::Builder;
 use super::xml::Props;
@@ -21,15 +25,15 @@ impl<'a, 'd> Builder<'a, 'd> {
         let kind = self.kind(node)?;
         let p = Props::new(self.doc, node)?;
         match kind.as_str() {
-            "path" | "ptracer" => {
+            "path" | "volpath" | "ptracer" => {
                 self.settings.integrator =
-                    Some(self.named(node, if kind == "path" { "pt" } else { "lt" }));
+                    Some(self.named(node, if kind == "ptracer" { "lt" } else { "pt" }));
             }
             other => {
                 self.doc.unsupported(
                     node,
                     &format!("integrator '{other}'"),
-                    "path, ptracer",
+                    "path, volpath, ptracer",
                     "footprint's path tracer",
                 )?;
                 self.settings.integrator = Some(self.named(node, "pt"));

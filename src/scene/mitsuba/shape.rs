@@ -188,6 +188,16 @@ impl<'a, 'd> Builder<'a, 'd> {
             ),
         };
         if let Some(le) = radiance {
+            if m.is_masked() {
+                self.doc.unsupported(
+                    node,
+                    "a mask on an emitting shape",
+                    "masks on shapes that do not emit",
+                    "the shape opaque",
+                )?;
+                m.opacity = 1.0;
+                m.opacity_texture = None;
+            }
             m.ke = le;
             if let Some(id) = node.attribute("id") {
                 m.name = format!("{} (emitter {id})", m.name);
