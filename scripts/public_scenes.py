@@ -31,6 +31,32 @@ import urllib.request
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DEST = os.path.join(ROOT, "scenes", "public", "fetched")
 
+def bitterli_0_5_edits(integrator=None):
+    """The edits that make a scene of Bitterli's Mitsuba 0.5 exports in
+    jgarciapueyo/mitsuba2-transient-scenes his original again, with its resolution (and, given
+    `integrator`, the tail of the reason why, its integrator) made a parameter."""
+    defaults = '\t<default name="resx" value="1280" />\n\t<default name="resy" value="720" />\n'
+    made = "the resolution made parameters (`-D resx=... -D resy=...`; defaults the original's 1280x720)"
+    edits = []
+    if integrator:
+        defaults += '\t<default name="integrator" value="path" />\n'
+        made = ("the resolution and the integrator made parameters (`-D resx=... -D resy=... "
+                "-D integrator=volpath`; defaults the original's 1280x720 and " + integrator)
+        edits.append(('<integrator type="path" >', '<integrator type="$integrator" >',
+                      "the integrator reads `$integrator`"))
+    return [
+        ('\t\t\t<boolean name="high_quality_edges" value="true" />\n', "",
+         "the copy's film property `high_quality_edges` (not in Bitterli's original, and "
+         "rejected by Mitsuba 3) removed"),
+        ('<scene version="0.5.0" >\n', '<scene version="0.5.0" >\n' + defaults, made),
+        *edits,
+        ('<integer name="width" value="1280" />', '<integer name="width" value="$resx" />',
+         "the film's width reads `$resx`"),
+        ('<integer name="height" value="720" />', '<integer name="height" value="$resy" />',
+         "the film's height reads `$resy`"),
+    ]
+
+
 # name -> where it lives, what it is, and the edits that make the copy the original again.
 SCENES = {
     "torus": dict(
@@ -70,31 +96,7 @@ SCENES = {
         "bitmap textures (7.8 MB).",
         licence="CC-BY (LICENSE.txt)",
         extra=["LICENSE.txt"],
-        edits=[
-            (
-                '\t\t\t<boolean name="high_quality_edges" value="true" />\n',
-                "",
-                "the copy's film property `high_quality_edges` (not in Bitterli's original, and "
-                "rejected by Mitsuba 3) removed",
-            ),
-            (
-                '<scene version="0.5.0" >\n',
-                '<scene version="0.5.0" >\n\t<default name="resx" value="1280" />\n'
-                '\t<default name="resy" value="720" />\n',
-                "the resolution made parameters (`-D resx=... -D resy=...`; defaults the "
-                "original's 1280x720)",
-            ),
-            (
-                '<integer name="width" value="1280" />',
-                '<integer name="width" value="$resx" />',
-                "the film's width reads `$resx`",
-            ),
-            (
-                '<integer name="height" value="720" />',
-                '<integer name="height" value="$resy" />',
-                "the film's height reads `$resy`",
-            ),
-        ],
+        edits=bitterli_0_5_edits(),
     ),
     "matpreview": dict(
         repo="zhiwei-c/Monte-Carlo-Path-Tracing",
@@ -128,6 +130,23 @@ SCENES = {
                 "snapshot) replaced by footprint's `tests/emitters/sky.exr`",
             )
         ],
+    ),
+    "living-room": dict(
+        repo="jgarciapueyo/mitsuba2-transient-scenes",
+        commit="ab67c4caa9228aa9d4115aeb90c3d3bab0aaf7b5",
+        path="living-room",
+        what="Bitterli's 'The Grey & White Room' (living-room, by Wig42) in Bitterli's Mitsuba 0.5 "
+        "form (which footprint and Mitsuba 3 both upgrade as they load it): a room lit by an HDR "
+        "sky through its windows, with a plant whose leaves are cut-outs (`mask` with a bitmap "
+        "opacity); 50 OBJ meshes, eleven textures (19 MB).",
+        licence="CC-BY 3.0 (LICENSE.txt)",
+        extra=["LICENSE.txt"],
+        edits=bitterli_0_5_edits(
+            integrator=(
+                "`path`): Mitsuba's `path` loses light seen through cut-outs, so its references "
+                "are rendered with `volpath` (docs/mitsuba.md, \"Cut-outs\")"
+            )
+        ),
     ),
 }
 

@@ -72,6 +72,8 @@ PUBLIC = {
     "modern-hall": dict(defines=dict(resx=64, resy=36), batches=32, spp=256),
     "matpreview": dict(defines=dict(width=64, height=48), batches=32, spp=256),
     "dining-room": dict(defines=dict(resx=48, resy=48), batches=32, spp=256),
+    # Its leaves are cut-outs: Mitsuba's `volpath` (its `path` loses light seen through them).
+    "living-room": dict(defines=dict(resx=64, resy=36, integrator="volpath"), batches=32, spp=128),
 }
 
 # The public scenes beside the repository (../shared/scenes-ext): parameters of the check.

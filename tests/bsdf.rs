@@ -3,7 +3,7 @@
 //! dielectric's Fresnel split, Snell's law and transport-mode scaling.
 //!
 //! The Mitsuba 3 kinds (conductor, rough conductor, plastic, rough plastic, thin dielectric,
-//! rough dielectric) join the same tests, and more: their values against Mitsuba 3's own
+//! rough dielectric), and blends of them, join the same tests, and more: their values against Mitsuba 3's own
 //! (`matches_mitsuba_3`, constants printed by scripts/mitsuba_bsdf_values.py), random
 //! configurations down to grazing and α = 1e-3, the white furnace, the thin sheet's
 //! R + T = 1, the conductor Fresnel term, one-sidedness, and which kinds are delta and
@@ -14,6 +14,8 @@
 
 mod common;
 
+#[path = "bsdf/blend.rs"]
+mod blend;
 #[path = "bsdf/configs.rs"]
 mod configs;
 #[path = "bsdf/energy.rs"]
@@ -30,7 +32,8 @@ mod sampling;
 mod specular;
 
 use footprint::Rgb;
-use footprint::bsdf::material::{Material, MaterialKind};
+use footprint::bsdf::blend::Blend;
+use footprint::bsdf::material::{Material, MaterialBlend, MaterialKind};
 use footprint::bsdf::{Bsdf, Lobes};
 use glam::Vec3;
 
@@ -61,8 +64,31 @@ fn material(kind: MaterialKind) -> Material {
 }
 
 /// The BSDF of `m` on a flat surface (normal +z) with its untextured `kd` and `ks`.
+/// The BSDF of `m` (untextured) under a flat shading frame, a blend's second component too.
 fn flat_bsdf(m: &Material) -> Bsdf {
-    Bsdf::new(Lobes::new(m, m.kd, m.ks), Vec3::Z, Vec3::Z)
+    let mut b = Bsdf::new(Lobes::new(m, m.kd, m.ks), Vec3::Z, Vec3::Z);
+    if let Some(blend) = &m.blend {
+        let other = Lobes::new(&blend.other, blend.other.kd, blend.other.ks);
+        b.blend = Some(Blend {
+            weight: blend.weight,
+            lobes: other.lobes,
+            two_sided: other.two_sided,
+        });
+    }
+    b
+}
+
+/// A blend of `first` and `second` (weight `w` on the second), prepared.
+fn blend_of(first: Material, second: Material, w: f32) -> Material {
+    Material {
+        blend: Some(Box::new(MaterialBlend {
+            weight: w,
+            weight_texture: None,
+            other: second,
+        })),
+        ..first
+    }
+    .prepared()
 }
 
 // The conductor and plastic parameters scripts/mitsuba_bsdf_values.py gives Mitsuba.

@@ -732,6 +732,23 @@ fn dining_room_matches_mitsuba() {
     );
 }
 
+/// `scenes/public/fetched/living-room` (`python3 scripts/public_scenes.py fetch living-room`;
+/// the test says it skipped without it): Bitterli's "The Grey & White Room" in his Mitsuba
+/// 0.5 form, lit by an HDR sky through its windows, a plant whose leaves are cut-outs (`mask`
+/// with a bitmap opacity), against Mitsuba's `volpath` (which passes cut-outs as footprint
+/// does; docs/mitsuba.md, "Cut-outs").
+#[test]
+fn living_room_matches_mitsuba() {
+    check_public(
+        "living-room",
+        (64, 36),
+        "tent",
+        65,
+        64,
+        &[("resx", "64"), ("resy", "36"), ("integrator", "volpath")],
+    );
+}
+
 /// A public scene (`scenes/public/`, kept or fetched) against its Mitsuba 3 reference with
 /// unguided path tracing: 24 replicates of `spp` at `res`, with the `-D` parameters
 /// `defines` (its resolution); `rfilter` and `max_depth` are the scene's own.

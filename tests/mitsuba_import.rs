@@ -1093,3 +1093,118 @@ fn masks_are_read_and_written() {
         "{e}"
     );
 }
+
+/// Mitsuba's `blendbsdf`: two nested BSDFs (by reference too) and `weight` (a number, clamped
+/// as Mitsuba clamps it, or a texture), `twosided` around it reaching both components; written
+/// back as a blend; a missing weight, a wrong count and a dielectric inside name their line.
+#[test]
+fn blends_are_read_and_written() {
+    let body = r#"<bsdf type="roughconductor" id="metal"><float name="alpha" value="0.2"/></bsdf>
+  <bsdf type="twosided" id="mix"><bsdf type="blendbsdf">
+    <float name="weight" value="0.3"/>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.5, 0.1"/></bsdf>
+    <ref id="metal"/>
+  </bsdf></bsdf>
+  <shape type="rectangle"><ref id="mix"/></shape>
+  <shape type="rectangle"><transform name="to_world"><translate z="-1"/></transform>
+    <bsdf type="blendbsdf"><texture name="weight" type="checkerboard"/><float name="unused" value="1"/>
+      <bsdf type="plastic"/><bsdf type="diffuse"/></bsdf></shape>
+  <shape type="rectangle"><transform name="to_world"><translate z="-2"/></transform>
+    <bsdf type="blendbsdf"><float name="weight" value="1.7"/><bsdf type="diffuse"/><bsdf type="plastic"/></bsdf></shape>"#;
+    let d = dir_with("blend", &[("scene.xml", &scene_xml(body))]);
+    let e = match load(&d, &[], false) {
+        Ok(_) => panic!("an unread property is an error"),
+        Err(e) => e.to_string(),
+    };
+    assert!(e.contains("unused"), "{e}");
+    let d = dir_with(
+        "blend",
+        &[(
+            "scene.xml",
+            &scene_xml(&body.replace(r#"<float name="unused" value="1"/>"#, "")),
+        )],
+    );
+    let s = load(&d, &[], false).unwrap();
+    let mix = s.materials.iter().find(|m| m.name == "mix").unwrap();
+    let b = mix.blend.as_ref().expect("a blend");
+    assert_eq!(
+        (mix.kind, b.other.kind),
+        (MaterialKind::Diffuse, MaterialKind::RoughConductor)
+    );
+    assert!(mix.two_sided && b.other.two_sided, "twosided reaches both");
+    assert_eq!((b.weight, b.weight_texture), (0.3, None));
+    assert_eq!(b.other.alpha, 0.2);
+    let textured = s
+        .materials
+        .iter()
+        .find(|m| m.kind == MaterialKind::Plastic)
+        .unwrap();
+    let tb = textured.blend.as_ref().unwrap();
+    assert!(tb.weight_texture.is_some() && tb.other.kind == MaterialKind::Diffuse);
+    let clamped = s
+        .materials
+        .iter()
+        .find(|m| {
+            m.blend
+                .as_ref()
+                .is_some_and(|b| b.other.kind == MaterialKind::Plastic)
+        })
+        .unwrap();
+    assert_eq!(clamped.blend.as_ref().unwrap().weight, 1.0);
+    assert!(s.effects.non_lambertian && s.effects.glossy && s.effects.specular_reflection);
+
+    // Written back and read again: the same components and weights.
+    let out = dir_with("blend-export", &[]);
+    footprint::scene::mitsuba::export::export(&s, &d.join("scene.xml"), &out).unwrap();
+    let back = load(&out, &[], false).unwrap();
+    let blends = |s: &Scene| {
+        let mut v: Vec<_> = s
+            .materials
+            .iter()
+            .filter_map(|m| {
+                let b = m.blend.as_ref()?;
+                Some((
+                    format!("{:?}/{:?}", m.kind, b.other.kind),
+                    b.weight.to_bits(),
+                    b.weight_texture.is_some(),
+                    (m.two_sided, b.other.two_sided),
+                ))
+            })
+            .collect();
+        v.sort();
+        v
+    };
+    assert_eq!(blends(&back), blends(&s));
+
+    // Bad input: the element's line and what is wrong.
+    let bad = |name: &str, props: &str| {
+        load_err(
+            name,
+            &format!("<shape type=\"cube\">\n<bsdf type=\"blendbsdf\">{props}</bsdf></shape>"),
+        )
+    };
+    let e = bad(
+        "blend-weight",
+        r#"<bsdf type="diffuse"/><bsdf type="diffuse"/>"#,
+    );
+    assert!(
+        e.contains("scene.xml:15:") && e.contains("needs a 'weight'"),
+        "{e}"
+    );
+    let e = bad(
+        "blend-one",
+        r#"<float name="weight" value="0.5"/><bsdf type="diffuse"/>"#,
+    );
+    assert!(
+        e.contains("scene.xml:15:") && e.contains("two nested <bsdf>, found 1"),
+        "{e}"
+    );
+    let e = bad(
+        "blend-glass",
+        "<float name=\"weight\" value=\"0.5\"/><bsdf type=\"diffuse\"/>\n<bsdf type=\"dielectric\"/>",
+    );
+    assert!(
+        e.contains("scene.xml:16:") && e.contains("a dielectric in a blendbsdf"),
+        "{e}"
+    );
+}

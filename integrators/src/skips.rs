@@ -33,7 +33,10 @@ pub fn particles_stored(scene: &Scene) -> bool {
         .iter()
         .zip(&used)
         .filter(|(_, u)| **u)
-        .any(|(m, _)| guides_at(&Lobes::new(m, m.kd, m.ks).lobes, scene.maps.soft_glossy_max))
+        .any(|(m, _)| {
+            m.components()
+                .all(|c| guides_at(&Lobes::new(c, c.kd, c.ks).lobes, scene.maps.soft_glossy_max))
+        })
 }
 
 /// What a render skipped by one rule, and how often: the run summary prints it, the tests

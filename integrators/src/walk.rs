@@ -315,7 +315,7 @@ fn walk_from<'a, V: Visitor>(
         // `lum(β · albedo · E) / π` for the region's particle density `E`.
         let expected = match state.region_density() {
             Some(e) if guided_rr => {
-                let c = luminance(p.beta * v.bsdf.lobes.colour() * e) * std::f32::consts::FRAC_1_PI;
+                let c = luminance(p.beta * v.bsdf.colour() * e) * std::f32::consts::FRAC_1_PI;
                 if p.expected_ref == 0.0 && c > 0.0 && c.is_finite() {
                     p.expected_ref = c;
                 }

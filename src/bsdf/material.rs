@@ -113,6 +113,19 @@ pub struct Material {
     pub opacity: f32,
     /// Index into the scene's textures whose luminance multiplies `opacity`.
     pub opacity_texture: Option<u32>,
+    /// Mitsuba's `blendbsdf`: this material blended with a second one
+    /// ([`crate::bsdf::blend`]); the fields above describe the first.
+    pub blend: Option<Box<MaterialBlend>>,
+}
+
+/// The second BSDF of a blend and its weight (the material holding it is the first).
+#[derive(Clone, Debug)]
+pub struct MaterialBlend {
+    /// Share of `other`, in [0, 1] (times `weight_texture`'s luminance where given).
+    pub weight: f32,
+    pub weight_texture: Option<u32>,
+    /// A reflecting kind without a bump map, a mask or a blend of its own.
+    pub other: Material,
 }
 
 impl Default for Material {
@@ -138,6 +151,7 @@ impl Default for Material {
             bump: None,
             opacity: 1.0,
             opacity_texture: None,
+            blend: None,
         }
     }
 }
@@ -228,7 +242,16 @@ impl Material {
             )),
             _ => None,
         };
+        if let Some(b) = self.blend.as_mut() {
+            b.other = b.other.clone().prepared();
+        }
         self
+    }
+
+    /// The material and, for a blend, its second component: the materials whose kinds a
+    /// surface of this one shows.
+    pub fn components(&self) -> impl Iterator<Item = &Material> {
+        std::iter::once(self).chain(self.blend.as_ref().map(|b| &b.other))
     }
 
     pub fn emits(&self) -> bool {

@@ -60,6 +60,9 @@
 //! block only so; a rule that also asked both directions to lie on one side of the geometric
 //! normal left it 10-30% darker there).
 //!
+//! Blends (Mitsuba's `blendbsdf`, [`crate::bsdf::blend`]): `(1 - w) f₀ + w f₁` with the
+//! densities mixed alike; the second component's lobes ride along in [`Bsdf::blend`].
+//!
 //! Bump maps (Mitsuba's `bumpmap`, [`crate::bsdf::bump`]): the lobes are evaluated and
 //! sampled about a normal tilted by a height field's gradient, mirrored per call to the side
 //! `wo` arrives from (`flip_invalid_normals`), with the terminator's shadowing term on `f`.
@@ -73,6 +76,7 @@
 //! the shading frame, the sidedness and the adjoint correction and samples the lobes, in
 //! `surface.rs`.
 
+pub mod blend;
 mod blinn;
 pub mod bump;
 pub mod fresnel;

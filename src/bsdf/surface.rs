@@ -2,6 +2,7 @@
 //! and the adjoint correction of shading normals; evaluation, density and sampling (the
 //! conventions: [`crate::bsdf`]).
 
+use crate::bsdf::blend::Blend;
 use crate::bsdf::bump::Bump;
 use crate::bsdf::fresnel::fresnel_dielectric;
 use crate::bsdf::lobes::{Lobes, LocalSample, SurfaceLobes};
@@ -48,6 +49,9 @@ pub struct Bsdf {
     /// A bump map's tilted normal at this point ([`crate::bsdf::bump`]): the lobes are then
     /// evaluated about it, while `frame` stays the surface's shading frame.
     pub bump: Option<Bump>,
+    /// A blend's second component ([`crate::bsdf::blend`]): the BSDF is then
+    /// `(1 - w)` times the one `lobes` make plus `w` times this one.
+    pub blend: Option<Blend>,
 }
 
 impl Bsdf {
@@ -61,11 +65,21 @@ impl Bsdf {
             ng,
             two_sided,
             bump: None,
+            blend: None,
         }
     }
 
+    /// True when every lobe (of both components of a blend) is a delta distribution.
     pub fn is_delta(&self) -> bool {
-        self.lobes.is_delta()
+        self.lobes.is_delta() && self.blend.is_none_or(|b| b.lobes.is_delta())
+    }
+
+    /// The reflectance colour of the lobes ([`Lobes::colour`]), blended as `f` is.
+    pub fn colour(&self) -> Rgb {
+        match &self.blend {
+            Some(b) => self.lobes.colour() * (1.0 - b.weight) + b.lobes.colour() * b.weight,
+            None => self.lobes.colour(),
+        }
     }
 
     /// `|wo·n_s| |wi·n_g| / (|wo·n_g| |wi·n_s|)` in importance mode, 1 in radiance mode.
@@ -145,7 +159,7 @@ impl Bsdf {
     #[inline]
     pub fn draw_numbers(&self, rng: &mut Rng) -> (f32, Vec2) {
         let u = rng.uniform2();
-        let u_lobe = if self.lobes.chooses_a_lobe() {
+        let u_lobe = if self.lobes.chooses_a_lobe() || self.blend.is_some() {
             rng.uniform()
         } else {
             0.0
@@ -168,7 +182,7 @@ impl Bsdf {
     /// without specular surfaces).
     #[inline]
     pub fn is_delta_with<F: Features>(&self) -> bool {
-        F::SPECULAR && self.lobes.is_delta()
+        F::SPECULAR && self.is_delta()
     }
 
     /// The Lambertian fast path's cosines: `(lo.z, li.z)` of [`Bsdf::reflection_local`],
@@ -192,6 +206,9 @@ impl Bsdf {
     /// [`Bsdf::eval`] compiled for the effects `F`.
     #[inline]
     pub fn eval_with<F: Features>(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+        if let Some(b) = &self.blend {
+            return self.eval_blend(b, wo, wi, mode);
+        }
         if let Some(bump) = self.bump_with::<F>() {
             return self.eval_bumped(bump, wo, wi, mode);
         }
@@ -229,7 +246,7 @@ impl Bsdf {
         wi: Vec3,
         mode: TransportMode,
     ) -> (Rgb, Option<f32>) {
-        if F::LAMBERTIAN && self.bump_with::<F>().is_none() {
+        if F::LAMBERTIAN && self.bump_with::<F>().is_none() && self.blend.is_none() {
             if let Lobes::Diffuse { kd } = self.lobes {
                 return match self.lambert_cosines(wo, wi) {
                     Some((_, li)) => (
@@ -252,6 +269,9 @@ impl Bsdf {
     /// [`Bsdf::pdf`] compiled for the effects `F`.
     #[inline]
     pub fn pdf_with<F: Features>(&self, wo: Vec3, wi: Vec3) -> f32 {
+        if let Some(b) = &self.blend {
+            return self.pdf_blend(b, wo, wi);
+        }
         if let Some(bump) = self.bump_with::<F>() {
             return self.pdf_bumped(bump, wo, wi);
         }
@@ -358,6 +378,9 @@ impl Bsdf {
         u: Vec2,
         mode: TransportMode,
     ) -> Option<BsdfSample> {
+        if let Some(b) = &self.blend {
+            return self.sample_blend(b, wo, u_lobe, u, mode);
+        }
         if let Some(bump) = self.bump_with::<F>() {
             return self.sample_bumped(bump, wo, u_lobe, u, mode);
         }

@@ -44,4 +44,4 @@ pub mod tangent_grid;
 pub use channel_mix::ChannelMix;
 pub use distribution::{Guide, GuideDistribution, GuideParticle};
 pub use registry::{BsdfOnly, GUIDES, find_guide, guide_names};
-pub use sampler::guides_at;
+pub use sampler::{guides_at, guides_at_bsdf};

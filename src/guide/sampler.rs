@@ -56,6 +56,14 @@ pub fn guides_at(lobes: &Lobes, soft_glossy_max: f32) -> bool {
     }
 }
 
+/// [`guides_at`] for a BSDF at a point: both components of a blend must be guided kinds.
+pub fn guides_at_bsdf(bsdf: &Bsdf, soft_glossy_max: f32) -> bool {
+    guides_at(&bsdf.lobes, soft_glossy_max)
+        && bsdf
+            .blend
+            .is_none_or(|b| guides_at(&b.lobes, soft_glossy_max))
+}
+
 /// A scattering point as the sampler sees it.
 #[derive(Clone, Copy, Debug)]
 pub struct ScatterPoint<'a> {
@@ -92,7 +100,7 @@ impl ScatterPoint<'_> {
     /// coefficients, throughput and the lobes' colour ([`ChannelMix`]).
     #[inline]
     pub fn channel_factor(&self) -> Rgb {
-        LUMINANCE * self.throughput * self.bsdf.lobes.colour()
+        LUMINANCE * self.throughput * self.bsdf.colour()
     }
 }
 
@@ -280,7 +288,7 @@ impl<'a> GuidedSampler<'a> {
         state.density = None;
         state.p_bsdf = self.params.p_bsdf;
         if matches!(self.source, GuideSource::Bsdf)
-            || !guides_at(&at.bsdf.lobes, self.soft_glossy_max)
+            || !guides_at_bsdf(at.bsdf, self.soft_glossy_max)
         {
             return;
         }
@@ -475,10 +483,10 @@ impl<'a> GuidedSampler<'a> {
     /// sources give the BSDF's pdf (their distribution would need a query).
     pub fn mis_pdf(&self, at: &ScatterPoint, wi: Vec3) -> f32 {
         let bsdf_pdf = at.bsdf.pdf(at.wo, wi);
-        if at.bsdf.is_delta() || !guides_at(&at.bsdf.lobes, self.soft_glossy_max) {
+        if at.bsdf.is_delta() || !guides_at_bsdf(at.bsdf, self.soft_glossy_max) {
             return bsdf_pdf;
         }
-        let white = LUMINANCE * at.bsdf.lobes.colour();
+        let white = LUMINANCE * at.bsdf.colour();
         let mut p = self.params.p_bsdf;
         let guide_pdf = match &self.source {
             GuideSource::Cached(cache) => {

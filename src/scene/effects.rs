@@ -48,8 +48,14 @@ impl Effects {
         }
         let mut e = Effects::default();
         e.shading_normals = shading.iter().any(|s| s.normals.is_some());
-        for (m, _) in materials.iter().zip(&used).filter(|(_, u)| **u) {
-            e.non_lambertian |= m.kind != MaterialKind::Diffuse;
+        let components = materials
+            .iter()
+            .zip(&used)
+            .filter(|(_, u)| **u)
+            .flat_map(|(m, _)| m.components());
+        for m in components {
+            // A blend is no plain Lambertian surface, whatever its components.
+            e.non_lambertian |= m.kind != MaterialKind::Diffuse || m.blend.is_some();
             match m.kind {
                 MaterialKind::Diffuse => e.diffuse |= m.kd.max_element() > 0.0,
                 MaterialKind::Glossy => {
@@ -92,7 +98,8 @@ impl Effects {
             e.textures |= m.kd_texture.is_some()
                 || m.ks_texture.is_some()
                 || m.bump.is_some()
-                || m.opacity_texture.is_some();
+                || m.opacity_texture.is_some()
+                || m.blend.as_ref().is_some_and(|b| b.weight_texture.is_some());
         }
         for l in lights {
             match l {

@@ -18,6 +18,7 @@ pub mod obj;
 pub mod texture;
 pub mod toml_file;
 
+use crate::bsdf::blend::Blend;
 use crate::bsdf::bump::{Bump, BumpMap, NormalSource, bumped_normal, mapped_normal, uv_partials};
 use crate::bsdf::material::{Material, MaterialKind};
 use crate::bsdf::{Bsdf, Lobes, SurfaceLobes};
@@ -377,13 +378,40 @@ impl Scene {
     #[inline]
     pub fn bsdf_with<F: Features>(&self, hit: &SurfaceHit) -> Bsdf {
         let m = &self.materials[hit.material as usize];
-        if F::LAMBERTIAN && !F::TEXTURES && m.kind == MaterialKind::Diffuse {
+        if F::LAMBERTIAN && !F::TEXTURES && m.kind == MaterialKind::Diffuse && m.blend.is_none() {
             let lobes = SurfaceLobes {
                 lobes: Lobes::Diffuse { kd: m.kd },
                 two_sided: m.two_sided,
             };
             return Bsdf::new(lobes, hit.ns, hit.facing_ng());
         }
+        let mut bsdf = Bsdf::new(self.lobes_with::<F>(m, hit), hit.ns, hit.facing_ng());
+        if F::TEXTURES
+            && let Some(map) = &m.bump
+        {
+            bsdf.bump = self.bump_at(map, hit, &bsdf);
+        }
+        if let Some(b) = &m.blend {
+            let weight = match b.weight_texture {
+                Some(t) if F::TEXTURES => {
+                    b.weight * luminance(self.textures[t as usize].lookup(hit.uv))
+                }
+                _ => b.weight,
+            };
+            let other = self.lobes_with::<F>(&b.other, hit);
+            bsdf.blend = Some(Blend {
+                weight: weight.clamp(0.0, 1.0),
+                lobes: other.lobes,
+                two_sided: other.two_sided,
+            });
+        }
+        bsdf
+    }
+
+    /// The lobes of material `m` at `hit`, its textures looked up (compiled for the effects
+    /// `F`: none without textures).
+    #[inline]
+    fn lobes_with<F: Features>(&self, m: &Material, hit: &SurfaceHit) -> SurfaceLobes {
         let (kd_texture, ks_texture) = if F::TEXTURES {
             (m.kd_texture, m.ks_texture)
         } else {
@@ -397,13 +425,7 @@ impl Scene {
             Some(t) => m.ks * self.textures[t as usize].lookup(hit.uv),
             None => m.ks,
         };
-        let mut bsdf = Bsdf::new(Lobes::new(m, kd, ks), hit.ns, hit.facing_ng());
-        if F::TEXTURES
-            && let Some(map) = &m.bump
-        {
-            bsdf.bump = self.bump_at(map, hit, &bsdf);
-        }
-        bsdf
+        Lobes::new(m, kd, ks)
     }
 
     /// The opacity of the surface at `hit` (Mitsuba's `mask`: the material's constant times

@@ -1,7 +1,7 @@
 //! The configurations every generic BSDF test runs: diffuse, Blinn-Phong and the Mitsuba
 //! kinds, from several incident directions, flat and under tilted shading normals.
 
-use crate::{MI_ETA, MI_K, MI_KD, MI_KS, dir, flat_bsdf, glossy, material};
+use crate::{MI_ETA, MI_K, MI_KD, MI_KS, blend_of, dir, flat_bsdf, glossy, material};
 use footprint::Rgb;
 use footprint::bsdf::material::{Material, MaterialKind};
 use footprint::bsdf::microfacet::Microfacet;
@@ -96,6 +96,7 @@ pub fn configs() -> Vec<Config> {
         axis: None,
     });
     v.extend(mitsuba_configs());
+    v.extend(blend_configs());
     v
 }
 
@@ -136,14 +137,7 @@ fn mitsuba_configs() -> Vec<Config> {
     for kind in [Microfacet::Ggx, Microfacet::Beckmann] {
         for alpha in [0.1f32, 0.3, 0.7] {
             for (j, wo) in incident_dirs().into_iter().enumerate() {
-                let m = Material {
-                    microfacet: kind,
-                    alpha,
-                    eta: MI_ETA,
-                    k: MI_K,
-                    ks: MI_KS,
-                    ..material(MaterialKind::RoughConductor)
-                };
+                let m = mi_rough_conductor(kind, alpha);
                 // A finer grid about the mirror direction for the narrow lobe.
                 let cap = (alpha < 0.2).then_some(1.0);
                 push(
@@ -320,4 +314,75 @@ pub fn rough_glass_configs() -> Vec<Config> {
         &rough_glass(Microfacet::Ggx, 0.3, ks, kt),
     ));
     v
+}
+
+/// Blends (`blendbsdf`): a Lambertian and a GGX rough conductor; a one-sided Blinn lobe and a
+/// two-sided Lambertian seen from below (only the second reflects there); a smooth plastic
+/// (a delta coat) and a Beckmann rough conductor in importance mode; each from three
+/// incident directions.
+fn blend_configs() -> Vec<Config> {
+    let conductor = mi_rough_conductor;
+    let diffuse = |kd: f32, two_sided| Material {
+        kd: Rgb::splat(kd),
+        two_sided,
+        ..material(MaterialKind::Diffuse)
+    };
+    let plastic = Material {
+        ni: 1.5,
+        kd: MI_KD,
+        ks: MI_KS,
+        ..material(MaterialKind::Plastic)
+    };
+    let glossy = Material {
+        kd: Rgb::splat(0.2),
+        ks: Rgb::splat(0.6),
+        ns: 20.0,
+        ..material(MaterialKind::Glossy)
+    };
+    let cases = [
+        (
+            "diffuse + roughconductor GGX α=0.4, w=0.3",
+            blend_of(diffuse(0.7, false), conductor(Microfacet::Ggx, 0.4), 0.3),
+            false,
+            TransportMode::Radiance,
+        ),
+        (
+            "one-sided glossy + two-sided diffuse, w=0.6, from below",
+            blend_of(glossy, diffuse(0.8, true), 0.6),
+            true,
+            TransportMode::Radiance,
+        ),
+        (
+            "plastic + roughconductor Beckmann α=0.3, w=0.5, importance",
+            blend_of(plastic, conductor(Microfacet::Beckmann, 0.3), 0.5),
+            false,
+            TransportMode::Importance,
+        ),
+    ];
+    let mut v = Vec::new();
+    for (name, m, below, mode) in cases {
+        for (j, wo) in incident_dirs().into_iter().enumerate() {
+            v.push(Config {
+                name: format!("blend {name} wo#{j}"),
+                bsdf: flat_bsdf(&m),
+                wo: if below { -wo } else { wo },
+                mode,
+                cap: None,
+                axis: None,
+            });
+        }
+    }
+    v
+}
+
+/// A rough conductor of the Mitsuba test parameters (`MI_ETA`, `MI_K`, `MI_KS`).
+fn mi_rough_conductor(microfacet: Microfacet, alpha: f32) -> Material {
+    Material {
+        microfacet,
+        alpha,
+        eta: MI_ETA,
+        k: MI_K,
+        ks: MI_KS,
+        ..material(MaterialKind::RoughConductor)
+    }
 }

@@ -5,7 +5,7 @@
 use crate::walk::{Arrival, Start, Vertex, Visitor, walk};
 use footprint::Rgb;
 use footprint::guide::cache::Seed;
-use footprint::guide::guides_at;
+use footprint::guide::guides_at_bsdf;
 use footprint::guide::particle_map::ParticleInput;
 use footprint::guide::sampler::{DirectionSample, GuidedSampler, SamplerState};
 use footprint::rng::Rng;
@@ -53,7 +53,7 @@ impl<F: Features> Visitor for Storing<'_, F> {
     }
 
     fn reached(&mut self, v: &Vertex, _from: &Arrival) {
-        if guides_at(&v.bsdf.lobes, self.soft_glossy_max) {
+        if guides_at_bsdf(&v.bsdf, self.soft_glossy_max) {
             let n = if v.hit.ng.dot(v.wo) >= 0.0 {
                 v.hit.ng
             } else {

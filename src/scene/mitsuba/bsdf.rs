@@ -5,7 +5,7 @@ use super::builder::Builder;
 use super::conductors::NAMED_CONDUCTORS;
 use super::xml::Props;
 use crate::Rgb;
-use crate::bsdf::material::{Material, MaterialKind};
+use crate::bsdf::material::{Material, MaterialBlend, MaterialKind};
 use crate::bsdf::microfacet::Microfacet;
 use crate::error::Result;
 use roxmltree::{Node, NodeId};
@@ -37,7 +37,7 @@ const NAMED_IOR: &[(&str, f32)] = &[
     ("diamond", 2.419),
 ];
 
-const BSDFS: &str = "diffuse, twosided, mask, bumpmap, normalmap, dielectric, thindielectric, roughdielectric, conductor, roughconductor, plastic, roughplastic";
+const BSDFS: &str = "diffuse, twosided, mask, blendbsdf, bumpmap, normalmap, dielectric, thindielectric, roughdielectric, conductor, roughconductor, plastic, roughplastic";
 
 impl<'a, 'd> Builder<'a, 'd> {
     fn ior(&self, p: &Props<'a, 'd>, name: &str, default: f32) -> Result<f32> {
@@ -198,6 +198,9 @@ impl<'a, 'd> Builder<'a, 'd> {
                     [b] => {
                         let mut im = self.bsdf(*b)?;
                         im.two_sided = true;
+                        if let Some(blend) = im.blend.as_mut() {
+                            blend.other.two_sided = true;
+                        }
                         im.name = m.name;
                         m = im;
                     }
@@ -214,6 +217,11 @@ impl<'a, 'd> Builder<'a, 'd> {
                     }
                     [] => return Err(self.doc.err(node, "twosided needs a nested <bsdf>")),
                 }
+            }
+            "blendbsdf" => {
+                let mut blended = self.blend(node, &p)?;
+                blended.name = m.name;
+                m = blended;
             }
             "mask" => {
                 let mut masked = self.mask(node, &p)?;
@@ -323,19 +331,71 @@ impl<'a, 'd> Builder<'a, 'd> {
         Ok(m)
     }
 
-    /// Mitsuba's `mask`: the one nested BSDF, cut out where `opacity` (a number, the
-    /// luminance of a colour, or a texture's luminance; default 0.5) is under 1. A mask in a mask multiplies the
-    /// opacities where at most one is a texture. Light passes a cut-out in a straight line,
-    /// so a mask around a dielectric (which bends or splits it) is unsupported.
-    fn mask(&mut self, node: Node<'a, 'a>, p: &Props<'a, 'd>) -> Result<Material> {
-        let nested: Vec<Node> = p
-            .unnamed
+    /// Mitsuba's `blendbsdf`: two nested BSDFs (in document order, `bsdf_0` then `bsdf_1`)
+    /// and `weight`, the share of the second (a number or a texture's luminance; required, as
+    /// in Mitsuba, and clamped to [0, 1] where it is read, as Mitsuba's `eval_weight`). The
+    /// components must be reflecting kinds without a bump map, a mask or a blend of their own
+    /// (a bump map or mask around the blend applies to both).
+    fn blend(&mut self, node: Node<'a, 'a>, p: &Props<'a, 'd>) -> Result<Material> {
+        let nested = self.nested_bsdfs(p)?;
+        let [first, second] = nested.as_slice() else {
+            return Err(self.doc.err(
+                node,
+                format!("blendbsdf needs two nested <bsdf>, found {}", nested.len()),
+            ));
+        };
+        if p.get("weight").is_none() {
+            return Err(self.doc.err(node, "blendbsdf needs a 'weight'"));
+        }
+        let (colour, weight_texture) = self.color_or_texture(p, "weight", Rgb::ONE)?;
+        let weight = crate::math::luminance(colour).clamp(0.0, 1.0);
+        let (mut a, mut b) = (self.bsdf(*first)?, self.bsdf(*second)?);
+        for (c, n) in [(&mut a, *first), (&mut b, *second)] {
+            if matches!(
+                c.kind,
+                MaterialKind::Glass | MaterialKind::ThinGlass | MaterialKind::RoughGlass
+            ) {
+                return Err(self.doc.err(
+                    n,
+                    "a dielectric in a blendbsdf is not supported (blends of reflecting BSDFs are)",
+                ));
+            }
+            if c.bump.is_some() || c.is_masked() || c.blend.is_some() {
+                self.doc.unsupported(
+                    n,
+                    "a bump map, mask or blend inside a blendbsdf",
+                    "a bump map or mask around the blend",
+                    "the component without it",
+                )?;
+                c.bump = None;
+                (c.opacity, c.opacity_texture, c.blend) = (1.0, None, None);
+            }
+        }
+        a.blend = Some(Box::new(MaterialBlend {
+            weight,
+            weight_texture,
+            other: b,
+        }));
+        Ok(a)
+    }
+
+    /// The nested `<bsdf>` elements of a BSDF, references resolved, in document order.
+    fn nested_bsdfs(&self, p: &Props<'a, 'd>) -> Result<Vec<Node<'a, 'a>>> {
+        Ok(p.unnamed
             .iter()
             .map(|n| self.deref(*n))
             .collect::<Result<Vec<_>>>()?
             .into_iter()
             .filter(|n| n.has_tag_name("bsdf"))
-            .collect();
+            .collect())
+    }
+
+    /// Mitsuba's `mask`: the one nested BSDF, cut out where `opacity` (a number, the
+    /// luminance of a colour, or a texture's luminance; default 0.5) is under 1. A mask in a mask multiplies the
+    /// opacities where at most one is a texture. Light passes a cut-out in a straight line,
+    /// so a mask around a dielectric (which bends or splits it) is unsupported.
+    fn mask(&mut self, node: Node<'a, 'a>, p: &Props<'a, 'd>) -> Result<Material> {
+        let nested = self.nested_bsdfs(p)?;
         let [inner] = nested.as_slice() else {
             return Err(self.doc.err(
                 node,

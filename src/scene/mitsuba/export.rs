@@ -323,6 +323,28 @@ fn colour_or_texture(
     })
 }
 
+/// A number property `name` of material `m` that may be a texture (whose luminance Mitsuba
+/// reads): `value` alone, or the texture where `value` is 1.
+fn number_or_texture(
+    scene: &Scene,
+    m: &Material,
+    name: &str,
+    value: f32,
+    texture: Option<u32>,
+    tf: &mut HashMap<u32, String>,
+    out: &Path,
+) -> Result<String> {
+    match texture {
+        Some(t) if value == 1.0 => colour_or_texture(scene, name, Rgb::ONE, Some(t), tf, out),
+        Some(_) => Err(Error::Other(format!(
+            "export: material '{}': a '{name}' texture scaled by {value}; Mitsuba's bitmap has no scale",
+            m.name
+        ))),
+        None => Ok(format!("<float name=\"{name}\" value=\"{value:?}\"/>")),
+    }
+}
+
+/// The `<bsdf>` element of material `m`, with the id `id`.
 fn bsdf_xml(
     scene: &Scene,
     m: &Material,
@@ -331,6 +353,103 @@ fn bsdf_xml(
     tf: &mut HashMap<u32, String>,
     out: &Path,
 ) -> Result<String> {
+    let body = bsdf_body(scene, m, notes, tf, out)?;
+    // The id goes on the outermost BSDF.
+    Ok(format!(
+        "  {}",
+        body.replacen("<bsdf ", &format!("<bsdf id=\"{id}\" "), 1)
+    ))
+}
+
+/// The `<bsdf>` element of material `m`, without an id: its kind (or its blend), wrapped in
+/// its bump map, its `twosided` and its mask.
+fn bsdf_body(
+    scene: &Scene,
+    m: &Material,
+    notes: &mut ExportNotes,
+    tf: &mut HashMap<u32, String>,
+    out: &Path,
+) -> Result<String> {
+    let inner = match &m.blend {
+        Some(b) => {
+            // The weight, then bsdf_0 and bsdf_1, each with its own sidedness.
+            let first = Material {
+                blend: None,
+                bump: None,
+                opacity: 1.0,
+                opacity_texture: None,
+                ..m.clone()
+            };
+            let weight =
+                number_or_texture(scene, m, "weight", b.weight, b.weight_texture, tf, out)?;
+            format!(
+                "<bsdf type=\"blendbsdf\">{weight}{}{}</bsdf>",
+                bsdf_body(scene, &first, notes, tf, out)?,
+                bsdf_body(scene, &b.other, notes, tf, out)?
+            )
+        }
+        None => match kind_xml(scene, m, notes, tf, out)? {
+            Kind::Reflecting(x) => x,
+            // Scatters on both sides by itself: never wrapped in `twosided`.
+            Kind::Transmitting(x) => return Ok(x),
+        },
+    };
+    // A bump map wraps the BSDF (and the `twosided` nested in it); the material's own
+    // `two_sided` wraps the bump map.
+    let inner = match &m.bump {
+        Some(b) => {
+            let nested = if b.nested_two_sided {
+                format!("<bsdf type=\"twosided\">{inner}</bsdf>")
+            } else {
+                inner
+            };
+            let (plugin, name, scale) = match b.source {
+                NormalSource::Height { scale } => (
+                    "bumpmap",
+                    "map",
+                    format!("<float name=\"scale\" value=\"{scale:?}\"/>"),
+                ),
+                NormalSource::Normals => ("normalmap", "normalmap", String::new()),
+            };
+            let map = colour_or_texture(scene, name, Rgb::ONE, Some(b.texture), tf, out)?;
+            format!(
+                "<bsdf type=\"{plugin}\">{map}{scale}<boolean name=\"flip_invalid_normals\" value=\"{}\"/><boolean name=\"use_shadowing_function\" value=\"{}\"/>{nested}</bsdf>",
+                b.flip_invalid_normals, b.shadowing
+            )
+        }
+        None => inner,
+    };
+    let inner = if m.two_sided && m.blend.is_none() {
+        format!("<bsdf type=\"twosided\">{inner}</bsdf>")
+    } else {
+        inner
+    };
+    // A cut-out wraps everything else, as Mitsuba's `mask` takes its opacity at the surface.
+    let inner = if m.is_masked() {
+        let opacity =
+            number_or_texture(scene, m, "opacity", m.opacity, m.opacity_texture, tf, out)?;
+        format!("<bsdf type=\"mask\">{opacity}{inner}</bsdf>")
+    } else {
+        inner
+    };
+    Ok(inner)
+}
+
+/// A material's own kind as Mitsuba XML.
+enum Kind {
+    Reflecting(String),
+    /// Scatters on both sides by itself.
+    Transmitting(String),
+}
+
+/// The `<bsdf>` of material `m`'s own kind (no blend, bump map, `twosided` or mask).
+fn kind_xml(
+    scene: &Scene,
+    m: &Material,
+    notes: &mut ExportNotes,
+    tf: &mut HashMap<u32, String>,
+    out: &Path,
+) -> Result<Kind> {
     // The microfacet properties when `m` is of the rough kind `k`.
     let rough = |k: MaterialKind| {
         if m.kind != k {
@@ -345,7 +464,7 @@ fn bsdf_xml(
             m.alpha
         )
     };
-    let inner = match m.kind {
+    Ok(Kind::Reflecting(match m.kind {
         MaterialKind::Diffuse => format!(
             "<bsdf type=\"diffuse\">{}</bsdf>",
             colour_or_texture(scene, "reflectance", m.kd, m.kd_texture, tf, out)?
@@ -398,14 +517,13 @@ fn bsdf_xml(
             )
         }
         MaterialKind::RoughGlass => {
-            // Scatters on both sides by itself: never wrapped in `twosided`.
-            return Ok(format!(
-                "  <bsdf type=\"roughdielectric\" id=\"{id}\">{}<float name=\"int_ior\" value=\"{:?}\"/><float name=\"ext_ior\" value=\"1.0\"/>{}{}</bsdf>",
+            return Ok(Kind::Transmitting(format!(
+                "<bsdf type=\"roughdielectric\">{}<float name=\"int_ior\" value=\"{:?}\"/><float name=\"ext_ior\" value=\"1.0\"/>{}{}</bsdf>",
                 rough(MaterialKind::RoughGlass),
                 m.ni,
                 colour_or_texture(scene, "specular_reflectance", m.ks, m.ks_texture, tf, out)?,
                 rgb("specular_transmittance", m.tf.map(f32::sqrt))
-            ));
+            )));
         }
         MaterialKind::Glass | MaterialKind::ThinGlass => {
             // footprint's `tf` is per passage through a solid (two interfaces) for glass.
@@ -414,8 +532,8 @@ fn bsdf_xml(
             } else {
                 m.tf
             };
-            return Ok(format!(
-                "  <bsdf type=\"{}\" id=\"{id}\"><float name=\"int_ior\" value=\"{:?}\"/><float name=\"ext_ior\" value=\"1.0\"/>{}</bsdf>",
+            return Ok(Kind::Transmitting(format!(
+                "<bsdf type=\"{}\"><float name=\"int_ior\" value=\"{:?}\"/><float name=\"ext_ior\" value=\"1.0\"/>{}</bsdf>",
                 if m.kind == MaterialKind::Glass {
                     "dielectric"
                 } else {
@@ -423,62 +541,9 @@ fn bsdf_xml(
                 },
                 m.ni,
                 rgb("specular_transmittance", st)
-            ));
+            )));
         }
-    };
-    // A bump map wraps the BSDF (and the `twosided` nested in it); the material's own
-    // `two_sided` wraps the bump map.
-    let inner = match &m.bump {
-        Some(b) => {
-            let nested = if b.nested_two_sided {
-                format!("<bsdf type=\"twosided\">{inner}</bsdf>")
-            } else {
-                inner
-            };
-            let (plugin, name, scale) = match b.source {
-                NormalSource::Height { scale } => (
-                    "bumpmap",
-                    "map",
-                    format!("<float name=\"scale\" value=\"{scale:?}\"/>"),
-                ),
-                NormalSource::Normals => ("normalmap", "normalmap", String::new()),
-            };
-            let map = colour_or_texture(scene, name, Rgb::ONE, Some(b.texture), tf, out)?;
-            format!(
-                "<bsdf type=\"{plugin}\">{map}{scale}<boolean name=\"flip_invalid_normals\" value=\"{}\"/><boolean name=\"use_shadowing_function\" value=\"{}\"/>{nested}</bsdf>",
-                b.flip_invalid_normals, b.shadowing
-            )
-        }
-        None => inner,
-    };
-    let inner = if m.two_sided {
-        format!("<bsdf type=\"twosided\">{inner}</bsdf>")
-    } else {
-        inner
-    };
-    // A cut-out wraps everything else, as Mitsuba's `mask` takes its opacity at the surface.
-    let inner = if m.is_masked() {
-        let opacity = match m.opacity_texture {
-            Some(t) if m.opacity == 1.0 => {
-                colour_or_texture(scene, "opacity", Rgb::ONE, Some(t), tf, out)?
-            }
-            Some(_) => {
-                return Err(Error::Other(format!(
-                    "export: material '{}': an opacity texture scaled by {}; Mitsuba's bitmap has no scale",
-                    m.name, m.opacity
-                )));
-            }
-            None => format!("<float name=\"opacity\" value=\"{:?}\"/>", m.opacity),
-        };
-        format!("<bsdf type=\"mask\">{opacity}{inner}</bsdf>")
-    } else {
-        inner
-    };
-    // The id goes on the outermost BSDF.
-    Ok(format!(
-        "  {}",
-        inner.replacen("<bsdf ", &format!("<bsdf id=\"{id}\" "), 1)
-    ))
+    }))
 }
 
 /// The triangles `tris` as an OBJ (shared vertices deduplicated exactly).
