@@ -56,6 +56,11 @@ BUNDLED = {
     "normalmap-ptracer": dict(scene="normalmap", integrator="ptracer", resx=32, resy=32, rfilter="box", max_depth=3,
                               batches=32, spp=512),
     "meshes": dict(resx=48, resy=48, rfilter="box", max_depth=4, batches=32, spp=256),
+    # Mitsuba's thinlens sensor: path tracing and the combined image against `path`, light
+    # tracing against `ptracer` (whose camera connections sample the aperture).
+    "thinlens": dict(resx=48, resy=48, rfilter="box", max_depth=3, batches=32, spp=512),
+    "thinlens-ptracer": dict(scene="thinlens", integrator="ptracer", resx=48, resy=48, rfilter="box", max_depth=3,
+                             batches=32, spp=512),
 }
 
 # The public scenes kept in the repository (scenes/public/<name>/scene.xml, unchanged but for

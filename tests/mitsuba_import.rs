@@ -1004,3 +1004,97 @@ fn version_0_5_files_upgrade_as_mitsuba_3() {
     .to_string();
     assert!(e.contains("'diffuseReflectance'"), "{e}");
 }
+
+/// Mitsuba's `thinlens` sensor: `aperture_radius` (required) and `focus_distance` (default
+/// `far_clip`, itself 1e4 by default) are read with perspective's other parameters; an
+/// aperture of 0 is the pinhole; a scaled `to_world` is refused, as Mitsuba refuses it; a TOML
+/// camera takes the same lens and exports it as a `thinlens` that reads back the same.
+#[test]
+fn thinlens_sensor_reads_its_aperture_and_focus() {
+    let thin = |props: &str, transform: &str| {
+        scene_xml("")
+            .replace(
+                "<sensor type=\"perspective\">",
+                &format!("<sensor type=\"thinlens\">{props}"),
+            )
+            .replace(
+                "<lookat origin=\"0, 0, 5\"",
+                &format!("{transform}<lookat origin=\"0, 0, 5\""),
+            )
+    };
+    let load_thin = |name: &str, props: &str, transform: &str| {
+        let d = dir_with(name, &[("scene.xml", &thin(props, transform))]);
+        load(&d, &[], false)
+    };
+    let r#ref = load(
+        &dir_with("pinhole-ref", &[("scene.xml", &scene_xml(""))]),
+        &[],
+        false,
+    )
+    .unwrap()
+    .camera;
+    let lens =
+        r#"<float name="aperture_radius" value="0.1"/><float name="focus_distance" value="3"/>"#;
+    let c = load_thin("thinlens", lens, "").unwrap().camera;
+    assert!(c.has_lens());
+    assert_eq!((c.lens_radius(), c.focus_distance()), (0.1, 3.0));
+    // The rest as perspective reads it.
+    assert_eq!((c.width, c.height), (r#ref.width, r#ref.height));
+    assert!((c.fov_y_deg - r#ref.fov_y_deg).abs() < 1e-6);
+    assert!((c.position - r#ref.position).length() < 1e-6);
+    assert!((c.frame.x - r#ref.frame.x).length() < 1e-6);
+    // focus_distance defaults to far_clip, and that to 1e4.
+    let radius = r#"<float name="aperture_radius" value="0.2"/>"#;
+    let c = load_thin("thin-default", radius, "").unwrap().camera;
+    assert_eq!(c.focus_distance(), 1e4);
+    let far = r#"<float name="aperture_radius" value="0.2"/><float name="far_clip" value="50"/>"#;
+    assert_eq!(
+        load_thin("thin-far", far, "")
+            .unwrap()
+            .camera
+            .focus_distance(),
+        50.0
+    );
+    // An aperture of 0 is the pinhole.
+    let zero = r#"<float name="aperture_radius" value="0"/>"#;
+    assert!(!load_thin("thin-zero", zero, "").unwrap().camera.has_lens());
+    // Errors: no aperture, a negative one, a scaled to_world.
+    let e = load_thin("thin-none", "", "").err().unwrap().to_string();
+    assert!(e.contains("aperture_radius"), "{e}");
+    let neg = r#"<float name="aperture_radius" value="-0.1"/>"#;
+    let e = load_thin("thin-neg", neg, "").err().unwrap().to_string();
+    assert!(e.contains("aperture radius"), "{e}");
+    let e = load_thin("thin-scaled", lens, "<scale value=\"2\"/>")
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("scale"), "{e}");
+    // A TOML camera with a lens (focus defaulting to the distance to look_at), exported and
+    // read back.
+    let d = dir_with(
+        "toml-lens",
+        &[
+            (
+                "s.toml",
+                "[camera]\nposition = [0.0, 0.0, -3.0]\nlook_at = [0.0, 0.0, 1.0]\nfov_y = 40.0\n\
+             resolution = [16, 16]\naperture_radius = 0.05\n[[mesh]]\nfile = \"m.obj\"\n\
+             [[light]]\ntype = \"point\"\nposition = [0.0, 1.0, -1.0]\nintensity = [1.0, 1.0, 1.0]\n",
+            ),
+            ("m.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n"),
+        ],
+    );
+    let scene = footprint::scene::load::load_scene(&d.join("s.toml")).unwrap();
+    assert_eq!(
+        (scene.camera.lens_radius(), scene.camera.focus_distance()),
+        (0.05, 4.0)
+    );
+    let out = dir_with("toml-lens-export", &[]);
+    footprint::scene::mitsuba::export::export(&scene, &d.join("s.toml"), &out).unwrap();
+    assert!(
+        std::fs::read_to_string(out.join("scene.xml"))
+            .unwrap()
+            .contains("thinlens")
+    );
+    let back = load(&out, &[], false).unwrap().camera;
+    assert_eq!((back.lens_radius(), back.focus_distance()), (0.05, 4.0));
+}

@@ -224,8 +224,13 @@ impl Scene {
                 .iter()
                 .flat_map(|t| [t.p0, t.p0 + t.e1, t.p0 + t.e2]),
         );
-        // The lights at infinity surround the scene's bounding sphere (camera included).
-        let (blo, bhi) = (lo.min(camera.position), hi.max(camera.position));
+        // The lights at infinity surround the scene's bounding sphere (the camera's lens
+        // included).
+        let lens = Vec3::splat(camera.lens_radius());
+        let (blo, bhi) = (
+            lo.min(camera.position - lens),
+            hi.max(camera.position + lens),
+        );
         let (center, radius) = (
             0.5 * (blo + bhi),
             (0.5 * (bhi - blo).length()).max(1e-3) * 1.01,
@@ -520,7 +525,8 @@ impl Scene {
         (Rgb::ZERO, 0)
     }
 
-    /// Shadow ray from surface point `p` (normal `ng`) to the camera position.
+    /// Shadow ray from surface point `p` (normal `ng`) to the camera position (the lens
+    /// centre).
     #[inline]
     pub fn visible_from_camera(&self, p: Vec3, ng: Vec3) -> bool {
         self.visible(p, ng, self.camera.position, None)

@@ -100,12 +100,28 @@ pub fn export(scene: &Scene, source: &Path, out: &Path) -> Result<ExportNotes> {
         "  <integrator type=\"path\"><integer name=\"max_depth\" value=\"$max_depth\"/></integrator>"
     );
     let target = cam.position.as_dvec3() + cam.frame.z.as_dvec3();
-    let _ = writeln!(x, "  <sensor type=\"perspective\">");
+    let _ = writeln!(
+        x,
+        "  <sensor type=\"{}\">",
+        if cam.has_lens() {
+            "thinlens"
+        } else {
+            "perspective"
+        }
+    );
     let _ = writeln!(
         x,
         "    <float name=\"fov\" value=\"{:?}\"/><string name=\"fov_axis\" value=\"y\"/>",
         cam.fov_y_deg
     );
+    if cam.has_lens() {
+        let _ = writeln!(
+            x,
+            "    <float name=\"aperture_radius\" value=\"{:?}\"/><float name=\"focus_distance\" value=\"{:?}\"/>",
+            cam.lens_radius(),
+            cam.focus_distance()
+        );
+    }
     // Mitsuba's image x runs along -(local x) = up x dir; a mirrored frame cannot be a lookat.
     if cam.frame.z.cross(cam.frame.y).dot(cam.frame.x) < 0.0 {
         return Err(Error::Other(
