@@ -36,6 +36,14 @@ PAIRS = [
     ((45.0, 0.0), (50.0, 170.0)),
     ((87.0, 0.0), (40.0, 90.0)),
 ]
+# More pairs for the anisotropic distributions: incident and sampled azimuths off the axes,
+# so that both roughnesses and their mix show.
+ANISOTROPIC_PAIRS = [
+    ((40.0, 90.0), (45.0, 270.0)),
+    ((50.0, 60.0), (30.0, 250.0)),
+    ((20.0, 135.0), (60.0, 300.0)),
+    ((70.0, 300.0), (65.0, 110.0)),
+]
 COSINES = [1.0, 0.8, 0.5, 0.2, 0.05]
 
 ETA = [0.2, 0.45, 1.4]
@@ -86,6 +94,13 @@ ROUGH = [
                  "diffuse_reflectance": rgb(KD), "specular_reflectance": rgb(KS)}),
     ("plastic_nonlinear", {"type": "plastic", "int_ior": 1.7, "ext_ior": 1.0, "nonlinear": True,
                            "diffuse_reflectance": rgb(KD)}),
+    # Anisotropic: alpha_u along the local x axis (the shading frame's dp/du), alpha_v along y.
+    ("roughconductor_ggx_u0.1_v0.4", {"type": "roughconductor", "distribution": "ggx",
+                                      "alpha_u": 0.1, "alpha_v": 0.4, "eta": rgb(ETA),
+                                      "k": rgb(K), "specular_reflectance": rgb(KS)}),
+    ("roughconductor_beckmann_u0.5_v0.15", {"type": "roughconductor", "distribution": "beckmann",
+                                            "alpha_u": 0.5, "alpha_v": 0.15, "eta": rgb(ETA),
+                                            "k": rgb(K), "specular_reflectance": rgb(KS)}),
 ]
 
 DELTA = [
@@ -105,6 +120,10 @@ ROUGH_DIELECTRIC = [
     (f"roughdielectric_{dist}_a{alpha}", dist, alpha)
     for dist in ["ggx", "beckmann"]
     for alpha in [0.01, 0.1, 0.5]
+] + [
+    # Anisotropic: (alpha_u, alpha_v).
+    ("roughdielectric_ggx_u0.1_v0.3", "ggx", (0.1, 0.3)),
+    ("roughdielectric_beckmann_u0.3_v0.1", "beckmann", (0.3, 0.1)),
 ]
 ROUGH_DIELECTRIC_IOR = 1.5
 # Incident directions (theta, phi in degrees): entering from above, leaving from below (the
@@ -160,11 +179,14 @@ def rough_dielectric_rows():
     print("#[allow(clippy::excessive_precision)]")
     print("const MITSUBA_ROUGH_DIELECTRIC: &[RoughDielectricRow] = &[")
     for name, dist, alpha in ROUGH_DIELECTRIC:
-        bsdf = mi.load_dict({"type": "roughdielectric", "distribution": dist, "alpha": alpha,
+        roughness = ({"alpha_u": alpha[0], "alpha_v": alpha[1]} if isinstance(alpha, tuple)
+                     else {"alpha": alpha})
+        bsdf = mi.load_dict({"type": "roughdielectric", "distribution": dist, **roughness,
                              "int_ior": ROUGH_DIELECTRIC_IOR, "ext_ior": 1.0,
                              "specular_reflectance": rgb(ROUGH_DIELECTRIC_KS),
                              "specular_transmittance": rgb(ROUGH_DIELECTRIC_KT)})
-        for wo_a, wi_a in rough_dielectric_pairs(alpha):
+        width = max(alpha) if isinstance(alpha, tuple) else alpha
+        for wo_a, wi_a in rough_dielectric_pairs(width):
             for importance in [False, True]:
                 mode = mi.TransportMode.Importance if importance else mi.TransportMode.Radiance
                 ctx = mi.BSDFContext(mode)
@@ -188,7 +210,7 @@ def main():
     print("const MITSUBA_EVAL: &[EvalRow] = &[")
     for name, desc in ROUGH:
         bsdf = mi.load_dict(desc)
-        for wo_a, wi_a in PAIRS:
+        for wo_a, wi_a in PAIRS + (ANISOTROPIC_PAIRS if "alpha_u" in desc else []):
             wo, wi = d(*wo_a), d(*wi_a)
             si = si_for(wo)
             value = bsdf.eval(ctx, si, wi)

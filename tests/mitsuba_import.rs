@@ -1098,3 +1098,67 @@ fn thinlens_sensor_reads_its_aperture_and_focus() {
     let back = load(&out, &[], false).unwrap().camera;
     assert_eq!((back.lens_radius(), back.focus_distance()), (0.05, 4.0));
 }
+
+/// Anisotropic roughness: `alpha_u` and `alpha_v` of a `roughconductor` and a
+/// `roughdielectric` are read as they are (equal ones are the isotropic `alpha`); a
+/// `roughplastic`'s, or one inside a `bumpmap`, is unsupported, lenient: `sqrt(α_u α_v)`;
+/// `export` writes them back.
+#[test]
+fn anisotropic_roughness_is_read() {
+    let rough = |kind: &str, u: f32, v: f32| {
+        format!(
+            r#"<shape type="rectangle"><bsdf type="{kind}"><string name="distribution" value="ggx"/>
+    <float name="alpha_u" value="{u}"/><float name="alpha_v" value="{v}"/></bsdf></shape>"#
+        )
+    };
+    let body = format!(
+        "{}\n{}\n{}",
+        rough("roughconductor", 0.1, 0.4),
+        rough("roughdielectric", 0.3, 0.05),
+        rough("roughconductor", 0.2, 0.2)
+    );
+    let d = dir_with("anisotropic", &[("scene.xml", &scene_xml(&body))]);
+    let s = load(&d, &[], false).unwrap();
+    let find = |k: MaterialKind, a: f32| {
+        s.materials
+            .iter()
+            .find(|m| m.kind == k && m.alpha == a)
+            .unwrap_or_else(|| panic!("{k:?} α {a}"))
+    };
+    let c = find(MaterialKind::RoughConductor, 0.1);
+    assert!(c.is_anisotropic() && c.alpha_v == Some(0.4));
+    let g = find(MaterialKind::RoughGlass, 0.3);
+    assert_eq!(g.alpha_v, Some(0.05));
+    assert!(!find(MaterialKind::RoughConductor, 0.2).is_anisotropic());
+    // Exported and read back.
+    let out = dir_with("anisotropic-export", &[]);
+    footprint::scene::mitsuba::export::export(&s, &d.join("scene.xml"), &out).unwrap();
+    let back = load(&out, &[], false).unwrap();
+    assert!(
+        back.materials
+            .iter()
+            .any(|m| m.alpha == 0.1 && m.alpha_v == Some(0.4))
+    );
+    // Unsupported: a rough plastic's anisotropy, and anisotropy inside a bump map.
+    let plastic = rough("roughplastic", 0.1, 0.4);
+    let heights = common::scenes_dir().join("bumpmap").join("bumps.png");
+    let bumped = format!(
+        r#"<shape type="rectangle"><bsdf type="bumpmap"><texture type="bitmap"><string name="filename" value="{}"/></texture>{}</bsdf></shape>"#,
+        heights.display(),
+        rough("roughconductor", 0.1, 0.4)
+            .trim_start_matches(r#"<shape type="rectangle">"#)
+            .trim_end_matches("</shape>")
+    );
+    for (name, body) in [("aniso-plastic", plastic), ("aniso-bump", bumped)] {
+        let d = dir_with(name, &[("scene.xml", &scene_xml(&body))]);
+        let e = load(&d, &[], false).err().unwrap().to_string();
+        assert!(e.contains("anisotropic"), "{name}: {e}");
+        let s = load(&d, &[], true).unwrap();
+        assert!(
+            s.import_notes
+                .iter()
+                .any(|n| n.contains("sqrt(alpha_u alpha_v) = 0.2"))
+        );
+        assert!(s.materials.iter().all(|m| !m.is_anisotropic()));
+    }
+}

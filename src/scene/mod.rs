@@ -22,7 +22,7 @@ use crate::bsdf::bump::{Bump, BumpMap, NormalSource, bumped_normal, mapped_norma
 use crate::bsdf::material::{Material, MaterialKind};
 use crate::bsdf::{Bsdf, Lobes, SurfaceLobes};
 use crate::features::{Features, General};
-use crate::math::Rgb;
+use crate::math::{Frame, Rgb};
 use crate::sampling::Distribution1D;
 use crate::scene::accel::Accel;
 use crate::scene::camera::Camera;
@@ -398,6 +398,14 @@ impl Scene {
             None => m.ks,
         };
         let mut bsdf = Bsdf::new(Lobes::new(m, kd, ks), hit.ns, hit.facing_ng());
+        // An anisotropic roughness is oriented by ∂p/∂u, as in Mitsuba (the isotropic lobes
+        // do not depend on the frame's tangent).
+        if m.is_anisotropic() {
+            let (dp_du, _) = self.uv_partials_at(hit);
+            if let Some(frame) = Frame::from_z_and_tangent(bsdf.frame.z, dp_du) {
+                bsdf.frame = frame;
+            }
+        }
         if F::TEXTURES
             && let Some(map) = &m.bump
         {
@@ -425,17 +433,24 @@ impl Scene {
             }
             NormalSource::Normals => None,
         };
-        let g = &self.triangles[hit.triangle as usize];
-        let uv = self.shading[hit.triangle as usize]
-            .uvs
-            .map(|uv| uv.map(|t| Vec2::new(t.x, 1.0 - t.y)))
-            .unwrap_or([Vec2::ZERO, Vec2::X, Vec2::Y]);
-        let (dp_du, dp_dv) = uv_partials(g.e1, g.e2, uv);
+        let (dp_du, dp_dv) = self.uv_partials_at(hit);
         let n = match grad {
             Some(grad) => bumped_normal(hit.ns, bsdf.ng, dp_du, dp_dv, grad)?,
             None => mapped_normal(hit.ns, dp_du, texture.lookup(hit.uv))?,
         };
         Some(Bump::new(map, &bsdf.frame, n))
+    }
+
+    /// The partials `∂p/∂u`, `∂p/∂v` of the hit's triangle in Mitsuba's texture coordinates
+    /// (`(u, 1 - v)` of the stored ones; the importer stores barycentric ones on a mesh
+    /// without any, as Mitsuba parametrises it).
+    fn uv_partials_at(&self, hit: &SurfaceHit) -> (Vec3, Vec3) {
+        let g = &self.triangles[hit.triangle as usize];
+        let uv = self.shading[hit.triangle as usize]
+            .uvs
+            .map(|uv| uv.map(|t| Vec2::new(t.x, 1.0 - t.y)))
+            .unwrap_or([Vec2::ZERO, Vec2::X, Vec2::Y]);
+        uv_partials(g.e1, g.e2, uv)
     }
 
     /// The shadow ray from surface point `p` (normal `ng`) to `target` (`target_n` the normal

@@ -356,10 +356,14 @@ fn bsdf_xml(
             Microfacet::Beckmann => "beckmann",
             Microfacet::Ggx => "ggx",
         };
-        format!(
-            "<string name=\"distribution\" value=\"{dist}\"/><float name=\"alpha\" value=\"{:?}\"/>",
-            m.alpha
-        )
+        let alpha = match m.alpha_v {
+            Some(v) => format!(
+                "<float name=\"alpha_u\" value=\"{:?}\"/><float name=\"alpha_v\" value=\"{v:?}\"/>",
+                m.alpha
+            ),
+            None => format!("<float name=\"alpha\" value=\"{:?}\"/>", m.alpha),
+        };
+        format!("<string name=\"distribution\" value=\"{dist}\"/>{alpha}")
     };
     let inner = match m.kind {
         MaterialKind::Diffuse => format!(
