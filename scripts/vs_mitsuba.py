@@ -59,6 +59,13 @@ BUNDLED = {
     # Cut-outs: Mitsuba's `volpath`, which passes them as footprint does (its `path` loses
     # light seen through them: docs/mitsuba.md, "Cut-outs").
     "cutout": dict(integrator="volpath", resx=48, resy=48, rfilter="box", max_depth=6, batches=32, spp=256),
+    # Mitsuba's thinlens sensor: path tracing and the combined image against `path`, light
+    # tracing against `ptracer` (whose camera connections sample the aperture).
+    "thinlens": dict(resx=48, resy=48, rfilter="box", max_depth=3, batches=32, spp=512),
+    # Anisotropic roughconductor (alpha_u != alpha_v), oriented by dp/du.
+    "anisotropic": dict(resx=32, resy=32, rfilter="box", max_depth=2, batches=32, spp=512),
+    "thinlens-ptracer": dict(scene="thinlens", integrator="ptracer", resx=48, resy=48, rfilter="box", max_depth=3,
+                             batches=32, spp=512),
 }
 
 # The public scenes kept in the repository (scenes/public/<name>/scene.xml, unchanged but for

@@ -53,6 +53,19 @@ impl Frame {
         Frame { x, y, z: n }
     }
 
+    /// The frame about the unit normal `n` whose `x` axis is `tangent` made orthogonal to
+    /// it, `y = n × x` (Mitsuba 3's `SurfaceInteraction::initialize_sh_frame`, which orients
+    /// anisotropic BSDFs by `∂p/∂u`); `None` where `tangent` has no part orthogonal to `n`.
+    #[inline]
+    pub fn from_z_and_tangent(n: Vec3, tangent: Vec3) -> Option<Self> {
+        let x = (tangent - n * n.dot(tangent)).try_normalize()?;
+        Some(Frame {
+            x,
+            y: n.cross(x),
+            z: n,
+        })
+    }
+
     #[inline]
     pub fn to_local(&self, v_world: Vec3) -> Vec3 {
         Vec3::new(

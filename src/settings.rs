@@ -277,7 +277,7 @@ pub struct GuideParams {
     pub region_seeds: usize,
     /// Particles that reached their surface in fewer segments are left out of the maps that
     /// guide. Depth-1 photons carry direct light, which next-event estimation samples already;
-    /// depth-1 importons point at the pinhole, which a light path cannot hit (its camera
+    /// depth-1 importons point at the camera, which a light path cannot hit (its camera
     /// connection covers that light). 1 keeps every particle.
     pub min_depth: u16,
     /// The combined image's MIS weights use the densities the guided samplers really draw

@@ -8,7 +8,9 @@
 //! configurations down to grazing and α = 1e-3, the white furnace, the thin sheet's
 //! R + T = 1, the conductor Fresnel term, one-sidedness, and which kinds are delta and
 //! guide; the rough dielectric's adjoint and generalised reciprocity across the interface,
-//! and its furnace against a quadrature (`bsdf/rough_dielectric.rs`).
+//! and its furnace against a quadrature (`bsdf/rough_dielectric.rs`); the microfacet
+//! distributions' normalisation and masking, anisotropic ones included
+//! (`bsdf/microfacet.rs`).
 //!
 //! The parts live in `tests/bsdf/`; this root holds what they share.
 
@@ -20,6 +22,8 @@ mod blend;
 mod configs;
 #[path = "bsdf/energy.rs"]
 mod energy;
+#[path = "bsdf/microfacet.rs"]
+mod microfacet;
 #[path = "bsdf/mitsuba.rs"]
 mod mitsuba;
 #[path = "bsdf/reciprocity.rs"]

@@ -29,6 +29,8 @@ use glam::{Vec2, Vec3};
 
 /// A path x0 (camera) .. x_{k-1} (surfaces), and the light point x_k with its light.
 struct Path {
+    /// The camera vertex x0: the lens point (the position for a pinhole).
+    lens: Vec3,
     hits: Vec<(SurfaceHit, Vec3)>, // hit and the direction of travel into it
     delta: Vec<bool>,
 }
@@ -36,8 +38,8 @@ struct Path {
 fn random_path(scene: &Scene, rng: &mut Rng, len: usize) -> Option<Path> {
     let cam = &scene.camera;
     let raster = rng.uniform2() * Vec2::new(cam.width as f32, cam.height as f32);
-    let mut origin = cam.position;
-    let mut dir = cam.ray_dir(raster);
+    let (lens, first_dir) = cam.ray(raster, cam.draw_lens_sample(rng));
+    let (mut origin, mut dir) = (lens, first_dir);
     let mut hits = Vec::new();
     let mut delta = Vec::new();
     for _ in 0..len {
@@ -52,7 +54,7 @@ fn random_path(scene: &Scene, rng: &mut Rng, len: usize) -> Option<Path> {
         origin = scene.spawn_origin(hit.p, hit.ng, s.wi);
         dir = s.wi;
     }
-    Some(Path { hits, delta })
+    Some(Path { lens, hits, delta })
 }
 
 /// The three weights of every checked path, with the densities `guided` or not, under the
@@ -110,7 +112,7 @@ fn check(mut scene: Scene, name: &str, guided: bool, params: &GuideParams) -> Ve
         let k = len as u32 + 1; // segments
         // ---- The camera subpath: x1 .. x_{k-1}, then the next-event weight and the
         // light hit at x_k ----
-        let mut cm = CameraMis::new(scene.camera.position, &d);
+        let mut cm = CameraMis::new(path.lens, &d);
         for (j, (hit, dir)) in path.hits.iter().enumerate() {
             let depth = j as u32 + 1;
             cm.arrive(&scene, depth, *dir, hit.p, hit.ng);
@@ -152,9 +154,10 @@ fn check(mut scene: Scene, name: &str, guided: bool, params: &GuideParams) -> Ve
                 if bsdf.is_delta() {
                     break;
                 }
-                let to_cam = (scene.camera.position - hit.p).normalize();
+                // The light path's connection reaches the camera path's lens point.
+                let to_cam = (path.lens - hit.p).normalize();
                 wk = lm
-                    .camera_connection(&scene, depth, &bsdf, hit.p, hit.ng, to_cam)
+                    .camera_connection(&scene, depth, &bsdf, hit.p, hit.ng, path.lens, to_cam)
                     .weight();
             } else {
                 // The light path leaves y_depth toward x_{j-1}: delta as the camera path's
@@ -241,5 +244,22 @@ fn weights_sum_to_one_under_a_directional_light() {
         let w = check(scene.clone(), "directional", guided, &defaults);
         // Both strategies carry weight.
         assert!(w.iter().any(|w| w[1] > 0.1) && w.iter().any(|w| w[2] > 0.1));
+    }
+}
+
+/// The same through a thin lens (cornell's camera with an aperture of radius 0.3 focused on
+/// the back wall): the camera vertex is a lens point, its area density `1 / A_lens` shared
+/// by all three strategies, the direction from it of the pinhole's density at that point.
+#[test]
+fn weights_sum_to_one_through_a_thin_lens() {
+    let mut scene = load_scene(&scene_path("cornell")).unwrap();
+    scene.camera = scene.camera.clone().with_lens(0.3, 13.6).unwrap();
+    let defaults = GuideParams::default();
+    for guided in [false, true] {
+        let w = check(scene.clone(), "cornell through a lens", guided, &defaults);
+        // Next-event estimation and light tracing both carry weight; hitting the small
+        // light carries some.
+        assert!(w.iter().any(|w| w[1] > 0.1) && w.iter().any(|w| w[2] > 0.1));
+        assert!(w.iter().any(|w| w[0] > 0.0));
     }
 }

@@ -1208,3 +1208,161 @@ fn blends_are_read_and_written() {
         "{e}"
     );
 }
+
+/// Mitsuba's `thinlens` sensor: `aperture_radius` (required) and `focus_distance` (default
+/// `far_clip`, itself 1e4 by default) are read with perspective's other parameters; an
+/// aperture of 0 is the pinhole; a scaled `to_world` is refused, as Mitsuba refuses it; a TOML
+/// camera takes the same lens and exports it as a `thinlens` that reads back the same.
+#[test]
+fn thinlens_sensor_reads_its_aperture_and_focus() {
+    let thin = |props: &str, transform: &str| {
+        scene_xml("")
+            .replace(
+                "<sensor type=\"perspective\">",
+                &format!("<sensor type=\"thinlens\">{props}"),
+            )
+            .replace(
+                "<lookat origin=\"0, 0, 5\"",
+                &format!("{transform}<lookat origin=\"0, 0, 5\""),
+            )
+    };
+    let load_thin = |name: &str, props: &str, transform: &str| {
+        let d = dir_with(name, &[("scene.xml", &thin(props, transform))]);
+        load(&d, &[], false)
+    };
+    let r#ref = load(
+        &dir_with("pinhole-ref", &[("scene.xml", &scene_xml(""))]),
+        &[],
+        false,
+    )
+    .unwrap()
+    .camera;
+    let lens =
+        r#"<float name="aperture_radius" value="0.1"/><float name="focus_distance" value="3"/>"#;
+    let c = load_thin("thinlens", lens, "").unwrap().camera;
+    assert!(c.has_lens());
+    assert_eq!((c.lens_radius(), c.focus_distance()), (0.1, 3.0));
+    // The rest as perspective reads it.
+    assert_eq!((c.width, c.height), (r#ref.width, r#ref.height));
+    assert!((c.fov_y_deg - r#ref.fov_y_deg).abs() < 1e-6);
+    assert!((c.position - r#ref.position).length() < 1e-6);
+    assert!((c.frame.x - r#ref.frame.x).length() < 1e-6);
+    // focus_distance defaults to far_clip, and that to 1e4.
+    let radius = r#"<float name="aperture_radius" value="0.2"/>"#;
+    let c = load_thin("thin-default", radius, "").unwrap().camera;
+    assert_eq!(c.focus_distance(), 1e4);
+    let far = r#"<float name="aperture_radius" value="0.2"/><float name="far_clip" value="50"/>"#;
+    assert_eq!(
+        load_thin("thin-far", far, "")
+            .unwrap()
+            .camera
+            .focus_distance(),
+        50.0
+    );
+    // An aperture of 0 is the pinhole.
+    let zero = r#"<float name="aperture_radius" value="0"/>"#;
+    assert!(!load_thin("thin-zero", zero, "").unwrap().camera.has_lens());
+    // Errors: no aperture, a negative one, a scaled to_world.
+    let e = load_thin("thin-none", "", "").err().unwrap().to_string();
+    assert!(e.contains("aperture_radius"), "{e}");
+    let neg = r#"<float name="aperture_radius" value="-0.1"/>"#;
+    let e = load_thin("thin-neg", neg, "").err().unwrap().to_string();
+    assert!(e.contains("aperture radius"), "{e}");
+    let e = load_thin("thin-scaled", lens, "<scale value=\"2\"/>")
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("scale"), "{e}");
+    // A TOML camera with a lens (focus defaulting to the distance to look_at), exported and
+    // read back.
+    let d = dir_with(
+        "toml-lens",
+        &[
+            (
+                "s.toml",
+                "[camera]\nposition = [0.0, 0.0, -3.0]\nlook_at = [0.0, 0.0, 1.0]\nfov_y = 40.0\n\
+             resolution = [16, 16]\naperture_radius = 0.05\n[[mesh]]\nfile = \"m.obj\"\n\
+             [[light]]\ntype = \"point\"\nposition = [0.0, 1.0, -1.0]\nintensity = [1.0, 1.0, 1.0]\n",
+            ),
+            ("m.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n"),
+        ],
+    );
+    let scene = footprint::scene::load::load_scene(&d.join("s.toml")).unwrap();
+    assert_eq!(
+        (scene.camera.lens_radius(), scene.camera.focus_distance()),
+        (0.05, 4.0)
+    );
+    let out = dir_with("toml-lens-export", &[]);
+    footprint::scene::mitsuba::export::export(&scene, &d.join("s.toml"), &out).unwrap();
+    assert!(
+        std::fs::read_to_string(out.join("scene.xml"))
+            .unwrap()
+            .contains("thinlens")
+    );
+    let back = load(&out, &[], false).unwrap().camera;
+    assert_eq!((back.lens_radius(), back.focus_distance()), (0.05, 4.0));
+}
+
+/// Anisotropic roughness: `alpha_u` and `alpha_v` of a `roughconductor` and a
+/// `roughdielectric` are read as they are (equal ones are the isotropic `alpha`); a
+/// `roughplastic`'s, or one inside a `bumpmap`, is unsupported, lenient: `sqrt(α_u α_v)`;
+/// `export` writes them back.
+#[test]
+fn anisotropic_roughness_is_read() {
+    let rough = |kind: &str, u: f32, v: f32| {
+        format!(
+            r#"<shape type="rectangle"><bsdf type="{kind}"><string name="distribution" value="ggx"/>
+    <float name="alpha_u" value="{u}"/><float name="alpha_v" value="{v}"/></bsdf></shape>"#
+        )
+    };
+    let body = format!(
+        "{}\n{}\n{}",
+        rough("roughconductor", 0.1, 0.4),
+        rough("roughdielectric", 0.3, 0.05),
+        rough("roughconductor", 0.2, 0.2)
+    );
+    let d = dir_with("anisotropic", &[("scene.xml", &scene_xml(&body))]);
+    let s = load(&d, &[], false).unwrap();
+    let find = |k: MaterialKind, a: f32| {
+        s.materials
+            .iter()
+            .find(|m| m.kind == k && m.alpha == a)
+            .unwrap_or_else(|| panic!("{k:?} α {a}"))
+    };
+    let c = find(MaterialKind::RoughConductor, 0.1);
+    assert!(c.is_anisotropic() && c.alpha_v == Some(0.4));
+    let g = find(MaterialKind::RoughGlass, 0.3);
+    assert_eq!(g.alpha_v, Some(0.05));
+    assert!(!find(MaterialKind::RoughConductor, 0.2).is_anisotropic());
+    // Exported and read back.
+    let out = dir_with("anisotropic-export", &[]);
+    footprint::scene::mitsuba::export::export(&s, &d.join("scene.xml"), &out).unwrap();
+    let back = load(&out, &[], false).unwrap();
+    assert!(
+        back.materials
+            .iter()
+            .any(|m| m.alpha == 0.1 && m.alpha_v == Some(0.4))
+    );
+    // Unsupported: a rough plastic's anisotropy, and anisotropy inside a bump map.
+    let plastic = rough("roughplastic", 0.1, 0.4);
+    let heights = common::scenes_dir().join("bumpmap").join("bumps.png");
+    let bumped = format!(
+        r#"<shape type="rectangle"><bsdf type="bumpmap"><texture type="bitmap"><string name="filename" value="{}"/></texture>{}</bsdf></shape>"#,
+        heights.display(),
+        rough("roughconductor", 0.1, 0.4)
+            .trim_start_matches(r#"<shape type="rectangle">"#)
+            .trim_end_matches("</shape>")
+    );
+    for (name, body) in [("aniso-plastic", plastic), ("aniso-bump", bumped)] {
+        let d = dir_with(name, &[("scene.xml", &scene_xml(&body))]);
+        let e = load(&d, &[], false).err().unwrap().to_string();
+        assert!(e.contains("anisotropic"), "{name}: {e}");
+        let s = load(&d, &[], true).unwrap();
+        assert!(
+            s.import_notes
+                .iter()
+                .any(|n| n.contains("sqrt(alpha_u alpha_v) = 0.2"))
+        );
+        assert!(s.materials.iter().all(|m| !m.is_anisotropic()));
+    }
+}

@@ -15,6 +15,7 @@ use footprint::guide::sampler::{GuideSource, GuidedSampler};
 use footprint::scene::Scene;
 use footprint::settings::GuideParams;
 use footprint::settings::MAX_MAP_PATHS;
+use glam::Vec2;
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
 
@@ -247,7 +248,7 @@ impl Passes {
 }
 
 /// The fraction of `particles` on surfaces the camera sees directly (inside the image,
-/// unoccluded; through thin dielectric sheets as the camera connections see, at most
+/// unoccluded from the lens centre; through thin dielectric sheets as the camera connections see, at most
 /// [`SEEN_THROUGH_SHEETS`]), from up to 20,000 of them spread evenly over the list.
 pub fn seen_fraction(scene: &Scene, particles: &[ParticleInput]) -> f64 {
     if particles.is_empty() {
@@ -258,13 +259,15 @@ pub fn seen_fraction(scene: &Scene, particles: &[ParticleInput]) -> f64 {
     let seen = sample
         .par_iter()
         .filter(|p| {
-            let camera = scene.camera.position;
-            scene.camera.connect(p.position).is_some()
-                && scene
-                    .transmittance(p.position, p.normal, camera, None, SEEN_THROUGH_SHEETS)
-                    .0
-                    .max_element()
-                    > 0.0
+            // Seen from the lens centre (the pinhole's position).
+            let Some(c) = scene.camera.connect(p.position, Vec2::splat(0.5)) else {
+                return false;
+            };
+            scene
+                .transmittance(p.position, p.normal, c.lens, None, SEEN_THROUGH_SHEETS)
+                .0
+                .max_element()
+                > 0.0
         })
         .count();
     seen as f64 / sample.len() as f64

@@ -21,7 +21,11 @@
 //!
 //! Both directions are counted equally: one camera path per pixel per pass and one light path
 //! per pixel per pass, with the camera pdf taken over the whole image, give equal sample
-//! counts. Delta (specular) steps have area density 1 in both directions, as in pbrt-v3's
+//! counts. The camera vertex `x0` is the pinhole, or a point of a thin lens: a camera path
+//! samples it uniformly on the lens and a light path's camera connection does too
+//! (`footprint::scene::camera`), so its area density `1 / A_lens` is a factor of all three
+//! strategies and is left out; the direction from it has the density per unit solid angle
+//! `Camera::pdf_dir` at that lens point, turned into an area density at `x1`. Delta (specular) steps have area density 1 in both directions, as in pbrt-v3's
 //! `MISWeight`; connections at delta vertices are impossible and get density 0.
 
 use footprint::Rgb;
@@ -280,6 +284,8 @@ pub struct CameraMis<'d> {
 }
 
 impl<'d> CameraMis<'d> {
+    /// A camera subpath from the camera vertex `camera`: the lens point its ray starts at
+    /// (the camera's position for a pinhole).
     pub fn new(camera: Vec3, d: &'d Densities<'d, 'd>) -> Self {
         let cam = MisVertex {
             p: camera,
@@ -302,12 +308,8 @@ impl<'d> CameraMis<'d> {
         let cam = &scene.camera;
         let [b0, b1] = self.recent.before;
         self.last_fwd = match b0.bsdf {
-            None => to_area(
-                cam.pdf_dir(dir.dot(cam.frame.z)) as f64,
-                cam.position,
-                p,
-                Some(ng),
-            ),
+            // From the camera vertex (the lens point the path started at).
+            None => to_area(cam.pdf_dir(dir.dot(cam.frame.z)) as f64, b0.p, p, Some(ng)),
             Some(b) => self.d.step(
                 TransportMode::Radiance,
                 &b,
@@ -447,16 +449,16 @@ impl<'d> LightMis<'d> {
         }
     }
 
-    /// The strategies of the light point `y0` itself seen by the camera in direction
-    /// `-to_camera`.
-    pub fn light_seen(&self, scene: &Scene, to_camera: Vec3) -> Strategies {
+    /// The strategies of the light point `y0` itself seen by the camera vertex `lens` (a
+    /// lens point, or the pinhole) in direction `-to_camera`.
+    pub fn light_seen(&self, scene: &Scene, lens: Vec3, to_camera: Vec3) -> Strategies {
         let cam = &scene.camera;
         let y0 = &self.recent.before[0];
         // k = 1: the camera path could hit an area light here, nothing else.
         let p0 = if y0.n.is_some() {
             to_area(
                 cam.pdf_dir((-to_camera).dot(cam.frame.z)) as f64,
-                cam.position,
+                lens,
                 y0.p,
                 y0.n,
             )
@@ -499,8 +501,9 @@ impl<'d> LightMis<'d> {
         }
     }
 
-    /// The strategies of the camera connection from `yj = p` (BSDF `bsdf`, normal `ng`,
-    /// direction to the camera `wi`).
+    /// The strategies of the camera connection from `yj = p` (BSDF `bsdf`, normal `ng`) to
+    /// the camera vertex `lens` (a lens point, or the pinhole) in direction `wi`.
+    #[allow(clippy::too_many_arguments)]
     pub fn camera_connection(
         &self,
         scene: &Scene,
@@ -508,13 +511,14 @@ impl<'d> LightMis<'d> {
         bsdf: &Bsdf,
         p: Vec3,
         ng: Vec3,
+        lens: Vec3,
         wi: Vec3,
     ) -> Strategies {
         let cam = &scene.camera;
         let b0 = &self.recent.before[0];
         let cam_area = to_area(
             cam.pdf_dir((-wi).dot(cam.frame.z)) as f64,
-            cam.position,
+            lens,
             p,
             Some(ng),
         );

@@ -147,8 +147,9 @@ pub trait Visitor {
     /// The ray along `dir` from `from.prev_p` left the scene; `beta` is its throughput and
     /// `depth` the segment count it would have closed.
     fn escaped(&mut self, _dir: Vec3, _beta: Rgb, _depth: u32, _from: &Arrival) {}
-    /// A vertex was reached.
-    fn reached(&mut self, _v: &Vertex, _from: &Arrival) {}
+    /// A vertex was reached; `rng` stands at the vertex's dimensions (a camera connection
+    /// draws its lens point there).
+    fn reached(&mut self, _v: &Vertex, _from: &Arrival, _rng: &mut Rng) {}
     /// The sampler is prepared at `v` (only at vertices the walk scatters from): next-event
     /// estimation happens here.
     fn before_scatter(
@@ -307,7 +308,10 @@ fn walk_from<'a, V: Visitor>(
         if !last {
             sampler.prepare(&at, state);
         }
-        visitor.reached(&v, &p.from);
+        // The vertex's dimensions start before the visitor's work there (which may draw a
+        // camera connection's lens point), then serve next-event estimation and scattering.
+        rng.start_vertex(depth);
+        visitor.reached(&v, &p.from, rng);
         if last {
             return;
         }
@@ -323,7 +327,6 @@ fn walk_from<'a, V: Visitor>(
             }
             _ => None,
         };
-        rng.start_vertex(depth);
         visitor.before_scatter(&v, &at, sampler, state, rng);
 
         // ---- Guided splitting ----

@@ -168,7 +168,7 @@ impl Lobes {
                 ks,
                 eta: material.eta,
                 k: material.k,
-                distr: MicrofacetDistribution::new(material.microfacet, material.alpha),
+                distr: material.distribution(),
             },
             MaterialKind::Plastic => {
                 let eta = material.ni;
@@ -205,7 +205,7 @@ impl Lobes {
                 ks,
                 // `tf` is per passage in and out, two crossings.
                 kt: material.tf.map(f32::sqrt),
-                distr: MicrofacetDistribution::new(material.microfacet, material.alpha),
+                distr: material.distribution(),
             }),
         };
         SurfaceLobes {

@@ -14,7 +14,7 @@
 
 use crate::Rgb;
 use crate::bsdf::bump::BumpMap;
-use crate::bsdf::microfacet::Microfacet;
+use crate::bsdf::microfacet::{Microfacet, MicrofacetDistribution};
 use crate::bsdf::rough_plastic::RoughPlasticTables;
 
 /// The kind of scattering a material does.
@@ -90,8 +90,12 @@ pub struct Material {
     pub eta: Rgb,
     /// Imaginary part (absorption) of a conductor's relative complex IOR, per channel.
     pub k: Rgb,
-    /// Microfacet roughness α (RoughConductor, RoughPlastic, RoughGlass).
+    /// Microfacet roughness α (RoughConductor, RoughPlastic, RoughGlass); of an anisotropic
+    /// one, `α_u`, along the shading frame's tangent `∂p/∂u`.
     pub alpha: f32,
+    /// An anisotropic roughness's `α_v`, across that tangent (RoughConductor, RoughGlass;
+    /// Mitsuba's `alpha_v`); `None`: isotropic.
+    pub alpha_v: Option<f32>,
     pub microfacet: Microfacet,
     /// False: the surface scatters only on the side its shading normal faces and is black
     /// seen from the back (a Mitsuba BSDF not wrapped in `twosided`). Transmissive kinds
@@ -143,6 +147,7 @@ impl Default for Material {
             eta: Rgb::ONE,
             k: Rgb::ZERO,
             alpha: 0.1,
+            alpha_v: None,
             microfacet: Microfacet::Ggx,
             two_sided: true,
             nonlinear: false,
@@ -252,6 +257,17 @@ impl Material {
     /// surface of this one shows.
     pub fn components(&self) -> impl Iterator<Item = &Material> {
         std::iter::once(self).chain(self.blend.as_ref().map(|b| &b.other))
+    }
+
+    /// The microfacet distribution of the rough kinds (`alpha`, `alpha_v`, `microfacet`).
+    pub fn distribution(&self) -> MicrofacetDistribution {
+        let alpha_v = self.alpha_v.unwrap_or(self.alpha);
+        MicrofacetDistribution::anisotropic(self.microfacet, self.alpha, alpha_v)
+    }
+
+    /// The roughness is anisotropic: the BSDF's shading frame must follow `∂p/∂u`.
+    pub fn is_anisotropic(&self) -> bool {
+        self.alpha_v.is_some_and(|v| v != self.alpha)
     }
 
     pub fn emits(&self) -> bool {

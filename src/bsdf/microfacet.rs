@@ -1,22 +1,29 @@
-//! Isotropic microfacet distributions (Beckmann and GGX) in the local shading frame (`z` the
-//! macro normal), as Mitsuba 3's `MicrofacetDistribution` defines them, so that the rough
-//! BSDFs built on them evaluate to Mitsuba's values:
+//! Microfacet distributions (Beckmann and GGX), isotropic or anisotropic, in the local
+//! shading frame (`z` the macro normal, `x` the direction of roughness `α_u`, Mitsuba's
+//! `∂p/∂u`), as Mitsuba 3's `MicrofacetDistribution` defines them, so that the rough BSDFs
+//! built on them evaluate to Mitsuba's values:
 //!
-//! * `D(m)`: Beckmann `exp(-tan²θ/α²) / (π α² cos⁴θ)`; GGX (Trowbridge-Reitz)
-//!   `1 / (π α² cos⁴θ (1 + tan²θ/α²)²)` (Walter, Marschner, Li & Torrance 2007, "Microfacet
-//!   Models for Refraction through Rough Surfaces", eqs. 25 and 33). Values with
+//! * `D(m)`: Beckmann `exp(-(m_x²/α_u² + m_y²/α_v²)/cos²θ) / (π α_u α_v cos⁴θ)`; GGX
+//!   (Trowbridge-Reitz) `1 / (π α_u α_v (m_x²/α_u² + m_y²/α_v² + m_z²)²)` (Walter,
+//!   Marschner, Li & Torrance 2007, "Microfacet Models for Refraction through Rough
+//!   Surfaces", eqs. 25 and 33, isotropic; Heitz 2014, "Understanding the Masking-Shadowing
+//!   Function in Microfacet-Based BRDFs", §5.3, anisotropic). Values with
 //!   `D cos θ <= 1e-20` are flushed to zero, as Mitsuba does.
 //! * Shadowing-masking: the separable Smith form `G = G1(wi, m) G1(wo, m)` with Smith's
 //!   `G1` (Walter et al. 2007, eq. 34 for GGX: `2 / (1 + sqrt(1 + α² tan²θ))`; for Beckmann
-//!   their rational approximation, eq. 27, in `a = 1 / (α tan θ)`), zero when `v` sees the
-//!   back of the facet or the facet from below ((v·m)(v·n) <= 0; Heitz 2014,
-//!   "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs").
+//!   their rational approximation, eq. 27, in `a = 1 / (α tan θ)`), where an anisotropic
+//!   distribution takes the roughness projected on the direction's azimuth,
+//!   `α(φ)² tan²θ = (α_u² v_x² + α_v² v_y²) / v_z²` (Heitz 2014, §5.3, eq. 80), zero when `v`
+//!   sees the back of the facet or the facet from below ((v·m)(v·n) <= 0; Heitz 2014).
 //! * Sampling: the distribution of visible normals `D_wi(m) = G1(wi, m) max(0, wi·m) D(m) /
 //!   cos θ_i` (Heitz & d'Eon 2014, "Importance Sampling Microfacet-Based BSDFs using the
-//!   Distribution of Visible Normals"); for GGX by Heitz 2018 ("Sampling the GGX
-//!   Distribution of Visible Normals", JCGT 7(4)), for Beckmann by inverting the visible
-//!   slope distribution's CDF numerically in the `erf` domain (W. Jakob 2014, "An Improved
-//!   Visible Normal Sampling Routine for the Beckmann Distribution"). The Beckmann sampler
+//!   Distribution of Visible Normals"), in the configuration stretched to `α = 1` by
+//!   `(α_u, α_v)` (Heitz & d'Eon 2014, §4, as Mitsuba's `sample`); for GGX by Heitz 2018
+//!   ("Sampling the GGX Distribution of Visible Normals", JCGT 7(4)), for Beckmann by
+//!   inverting the visible slope distribution's CDF numerically in the `erf` domain (W. Jakob
+//!   2014, "An Improved Visible Normal Sampling Routine for the Beckmann Distribution"). An
+//!   isotropic distribution evaluates `D` and `G1` by the isotropic forms (`α_u = α_v`: the
+//!   same values, fewer operations). The Beckmann sampler
 //!   follows the exact Smith masking (with `erf`), which the rational approximation misses by
 //!   up to 0.35%: densities use the exact one ([`MicrofacetDistribution::g1_sampled_front`])
 //!   so that they describe the samples exactly, values the approximation, as Mitsuba.
@@ -40,40 +47,82 @@ pub enum Microfacet {
 /// Smallest roughness (Mitsuba clamps to the same).
 pub const ALPHA_MIN: f32 = 1e-4;
 
-/// An isotropic microfacet normal distribution of roughness `alpha`.
+/// A microfacet normal distribution of roughness `alpha_u` along the local `x` axis and
+/// `alpha_v` along `y` (equal: isotropic).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MicrofacetDistribution {
     pub kind: Microfacet,
-    pub alpha: f32,
+    pub alpha_u: f32,
+    pub alpha_v: f32,
 }
 
 impl MicrofacetDistribution {
-    /// The distribution `kind` of roughness `alpha`, clamped to at least [`ALPHA_MIN`].
+    /// The isotropic distribution `kind` of roughness `alpha`, clamped to at least
+    /// [`ALPHA_MIN`].
     pub fn new(kind: Microfacet, alpha: f32) -> Self {
+        Self::anisotropic(kind, alpha, alpha)
+    }
+
+    /// The distribution `kind` of roughness `alpha_u` along the local `x` axis and `alpha_v`
+    /// along `y` (Mitsuba's `alpha_u`, `alpha_v`), each clamped to at least [`ALPHA_MIN`].
+    pub fn anisotropic(kind: Microfacet, alpha_u: f32, alpha_v: f32) -> Self {
         MicrofacetDistribution {
             kind,
-            alpha: alpha.max(ALPHA_MIN),
+            alpha_u: alpha_u.max(ALPHA_MIN),
+            alpha_v: alpha_v.max(ALPHA_MIN),
         }
     }
 
-    /// The Blinn exponent of about the same lobe width, `2/α² - 2`.
+    /// `α_u = α_v`.
+    #[inline]
+    pub fn is_isotropic(&self) -> bool {
+        self.alpha_u == self.alpha_v
+    }
+
+    /// The Blinn exponent of about the same lobe width, `2/α² - 2`, with `α² = α_u α_v` (the
+    /// lobe's solid angle) where it is anisotropic.
     pub fn blinn_exponent(&self) -> f32 {
-        2.0 / (self.alpha * self.alpha) - 2.0
+        2.0 / (self.alpha_u * self.alpha_v) - 2.0
     }
 
     /// `D(m)` per unit solid angle of microfacet normals (`∫ D(m) cos θ_m dω = 1`).
     pub fn d(&self, m: Vec3) -> f32 {
-        let a2 = self.alpha * self.alpha;
         let cos2 = m.z * m.z;
-        let xy2 = m.x * m.x + m.y * m.y;
-        let r = match self.kind {
-            Microfacet::Beckmann => (-xy2 / (a2 * cos2)).exp() / (PI * a2 * cos2 * cos2),
-            Microfacet::Ggx => {
-                let t = xy2 / a2 + cos2;
-                1.0 / (PI * a2 * t * t)
+        let r = if self.is_isotropic() {
+            let a2 = self.alpha_u * self.alpha_u;
+            let xy2 = m.x * m.x + m.y * m.y;
+            match self.kind {
+                Microfacet::Beckmann => (-xy2 / (a2 * cos2)).exp() / (PI * a2 * cos2 * cos2),
+                Microfacet::Ggx => {
+                    let t = xy2 / a2 + cos2;
+                    1.0 / (PI * a2 * t * t)
+                }
+            }
+        } else {
+            let (x, y) = (m.x / self.alpha_u, m.y / self.alpha_v);
+            let xy2 = x * x + y * y;
+            let auv = self.alpha_u * self.alpha_v;
+            match self.kind {
+                Microfacet::Beckmann => (-xy2 / cos2).exp() / (PI * auv * cos2 * cos2),
+                Microfacet::Ggx => {
+                    let t = xy2 + cos2;
+                    1.0 / (PI * auv * t * t)
+                }
             }
         };
         if r * m.z > 1e-20 { r } else { 0.0 }
+    }
+
+    /// `α(φ)² sin²θ` of direction `v`: the squared roughness projected on its azimuth times
+    /// its squared sine, `α_u² v_x² + α_v² v_y²` (Heitz 2014, eq. 80).
+    #[inline]
+    fn projected_xy_alpha2(&self, v: Vec3) -> f32 {
+        if self.is_isotropic() {
+            self.alpha_u * self.alpha_u * (v.x * v.x + v.y * v.y)
+        } else {
+            let (x, y) = (self.alpha_u * v.x, self.alpha_v * v.y);
+            x * x + y * y
+        }
     }
 
     /// Smith's masking of direction `v` for microfacet normal `m` (Beckmann: the rational
@@ -88,7 +137,7 @@ impl MicrofacetDistribution {
     /// [`MicrofacetDistribution::g1`] for a normal `m` known to face `v` from the same side
     /// as the macro normal (`(v·m)(v·n) > 0`); it depends on `v` alone then.
     pub fn g1_front(&self, v: Vec3) -> f32 {
-        let xy_alpha2 = self.alpha * self.alpha * (v.x * v.x + v.y * v.y);
+        let xy_alpha2 = self.projected_xy_alpha2(v);
         if xy_alpha2 == 0.0 {
             return 1.0;
         }
@@ -115,7 +164,7 @@ impl MicrofacetDistribution {
         match self.kind {
             Microfacet::Ggx => self.g1_front(v),
             Microfacet::Beckmann => {
-                let xy = (self.alpha * self.alpha * (v.x * v.x + v.y * v.y)) as f64;
+                let xy = self.projected_xy_alpha2(v) as f64;
                 if xy == 0.0 {
                     return 1.0;
                 }
@@ -144,12 +193,12 @@ impl MicrofacetDistribution {
     /// Draws a microfacet normal from the distribution of normals visible from `wi` (local,
     /// `wi.z > 0`).
     pub fn sample_visible(&self, wi: Vec3, u: Vec2) -> Vec3 {
-        let a = self.alpha;
+        let (au, av) = (self.alpha_u, self.alpha_v);
         match self.kind {
             Microfacet::Ggx => {
                 // Heitz 2018: the stretched configuration is a hemisphere; sample its
                 // projected area seen from the stretched direction.
-                let vh = Vec3::new(a * wi.x, a * wi.y, wi.z).normalize();
+                let vh = Vec3::new(au * wi.x, av * wi.y, wi.z).normalize();
                 let len2 = vh.x * vh.x + vh.y * vh.y;
                 let t1 = if len2 > 0.0 {
                     Vec3::new(-vh.y, vh.x, 0.0) / len2.sqrt()
@@ -164,7 +213,7 @@ impl MicrofacetDistribution {
                 let s = 0.5 * (1.0 + vh.z);
                 let p2 = (1.0 - s) * safe_sqrt(1.0 - p1 * p1) + s * p2;
                 let nh = p1 * t1 + p2 * t2 + safe_sqrt(1.0 - p1 * p1 - p2 * p2) * vh;
-                Vec3::new(a * nh.x, a * nh.y, nh.z.max(0.0)).normalize()
+                Vec3::new(au * nh.x, av * nh.y, nh.z.max(0.0)).normalize()
             }
             Microfacet::Beckmann => {
                 // Stretch to α = 1, sample the visible slopes for the stretched elevation with
@@ -172,7 +221,7 @@ impl MicrofacetDistribution {
                 // The sine from the tangential components, not from 1 - cos²: at small α the
                 // stretched direction is within a few 1e-3 of the normal, where 1 - cos² in
                 // f32 keeps about two digits (a percent off the slopes' scale and azimuth).
-                let ws = Vec3::new(a * wi.x, a * wi.y, wi.z).normalize();
+                let ws = Vec3::new(au * wi.x, av * wi.y, wi.z).normalize();
                 let sin_t = (ws.x * ws.x + ws.y * ws.y).sqrt();
                 let (cos_phi, sin_phi) = if sin_t > 0.0 {
                     (
@@ -184,15 +233,16 @@ impl MicrofacetDistribution {
                 };
                 let (sx, sy) = beckmann_visible_slopes(sin_t as f64, ws.z as f64, u);
                 let (sx, sy) = (sx as f32, sy as f32);
-                let mx = (cos_phi * sx - sin_phi * sy) * a;
-                let my = (sin_phi * sx + cos_phi * sy) * a;
+                let mx = (cos_phi * sx - sin_phi * sy) * au;
+                let my = (sin_phi * sx + cos_phi * sy) * av;
                 Vec3::new(-mx, -my, 1.0).normalize()
             }
         }
     }
 
     /// Directional albedo of the specular reflection off a rough dielectric interface of
-    /// relative index `eta` seen from `cos_i`: `∫ D_wi(m) F(wi·m) G1(wo, m) dm` with
+    /// relative index `eta` seen from `cos_i` (in the `xz` plane: an anisotropic
+    /// distribution's albedo depends on the azimuth too): `∫ D_wi(m) F(wi·m) G1(wo, m) dm` with
     /// `wo` the mirror of `wi` about `m` (Mitsuba's `eval_reflectance`), by the tensor
     /// product of the Gauss-Legendre rule `nodes` (on [0, 1]) over the visible-normal sample
     /// space.

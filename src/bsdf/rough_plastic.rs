@@ -36,7 +36,7 @@ impl RoughPlasticTables {
     /// The tables of a coating, computed on first use and cached.
     pub fn get(kind: Microfacet, alpha: f32, eta: f32) -> &'static RoughPlasticTables {
         static CACHE: OnceLock<Mutex<HashMap<Key, &'static RoughPlasticTables>>> = OnceLock::new();
-        let alpha = MicrofacetDistribution::new(kind, alpha).alpha;
+        let alpha = MicrofacetDistribution::new(kind, alpha).alpha_u;
         let key = (kind, alpha.to_bits(), eta.to_bits());
         let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
         if let Some(t) = cache.lock().unwrap().get(&key) {
@@ -77,7 +77,7 @@ impl RoughPlasticTables {
             (2.0 * rows.iter().map(|(_, r)| r).sum::<f64>() / RES as f64) as f32;
         RoughPlasticTables {
             kind,
-            alpha: distr.alpha,
+            alpha: distr.alpha_u,
             eta,
             external_transmittance,
             internal_reflectance,

@@ -23,7 +23,7 @@ use crate::bsdf::bump::{Bump, BumpMap, NormalSource, bumped_normal, mapped_norma
 use crate::bsdf::material::{Material, MaterialKind};
 use crate::bsdf::{Bsdf, Lobes, SurfaceLobes};
 use crate::features::{Features, General};
-use crate::math::{Rgb, luminance};
+use crate::math::{Frame, Rgb, luminance};
 use crate::sampling::Distribution1D;
 use crate::scene::accel::Accel;
 use crate::scene::camera::Camera;
@@ -230,8 +230,13 @@ impl Scene {
                 .iter()
                 .flat_map(|t| [t.p0, t.p0 + t.e1, t.p0 + t.e2]),
         );
-        // The lights at infinity surround the scene's bounding sphere (camera included).
-        let (blo, bhi) = (lo.min(camera.position), hi.max(camera.position));
+        // The lights at infinity surround the scene's bounding sphere (the camera's lens
+        // included).
+        let lens = Vec3::splat(camera.lens_radius());
+        let (blo, bhi) = (
+            lo.min(camera.position - lens),
+            hi.max(camera.position + lens),
+        );
         let (center, radius) = (
             0.5 * (blo + bhi),
             (0.5 * (bhi - blo).length()).max(1e-3) * 1.01,
@@ -386,6 +391,14 @@ impl Scene {
             return Bsdf::new(lobes, hit.ns, hit.facing_ng());
         }
         let mut bsdf = Bsdf::new(self.lobes_with::<F>(m, hit), hit.ns, hit.facing_ng());
+        // An anisotropic roughness is oriented by ∂p/∂u, as in Mitsuba (the isotropic lobes
+        // do not depend on the frame's tangent).
+        if m.components().any(Material::is_anisotropic) {
+            let (dp_du, _) = self.uv_partials_at(hit);
+            if let Some(frame) = Frame::from_z_and_tangent(bsdf.frame.z, dp_du) {
+                bsdf.frame = frame;
+            }
+        }
         if F::TEXTURES
             && let Some(map) = &m.bump
         {
@@ -465,17 +478,24 @@ impl Scene {
             }
             NormalSource::Normals => None,
         };
-        let g = &self.triangles[hit.triangle as usize];
-        let uv = self.shading[hit.triangle as usize]
-            .uvs
-            .map(|uv| uv.map(|t| Vec2::new(t.x, 1.0 - t.y)))
-            .unwrap_or([Vec2::ZERO, Vec2::X, Vec2::Y]);
-        let (dp_du, dp_dv) = uv_partials(g.e1, g.e2, uv);
+        let (dp_du, dp_dv) = self.uv_partials_at(hit);
         let n = match grad {
             Some(grad) => bumped_normal(hit.ns, bsdf.ng, dp_du, dp_dv, grad)?,
             None => mapped_normal(hit.ns, dp_du, texture.lookup(hit.uv))?,
         };
         Some(Bump::new(map, &bsdf.frame, n))
+    }
+
+    /// The partials `∂p/∂u`, `∂p/∂v` of the hit's triangle in Mitsuba's texture coordinates
+    /// (`(u, 1 - v)` of the stored ones; the importer stores barycentric ones on a mesh
+    /// without any, as Mitsuba parametrises it).
+    fn uv_partials_at(&self, hit: &SurfaceHit) -> (Vec3, Vec3) {
+        let g = &self.triangles[hit.triangle as usize];
+        let uv = self.shading[hit.triangle as usize]
+            .uvs
+            .map(|uv| uv.map(|t| Vec2::new(t.x, 1.0 - t.y)))
+            .unwrap_or([Vec2::ZERO, Vec2::X, Vec2::Y]);
+        uv_partials(g.e1, g.e2, uv)
     }
 
     /// The shadow ray from surface point `p` (normal `ng`) to `target` (`target_n` the normal
@@ -577,7 +597,8 @@ impl Scene {
         (Rgb::ZERO, 0)
     }
 
-    /// Shadow ray from surface point `p` (normal `ng`) to the camera position.
+    /// Shadow ray from surface point `p` (normal `ng`) to the camera position (the lens
+    /// centre).
     #[inline]
     pub fn visible_from_camera(&self, p: Vec3, ng: Vec3) -> bool {
         self.visible(p, ng, self.camera.position, None)

@@ -47,6 +47,12 @@ struct CameraDesc {
     up: [f32; 3],
     fov_y: f32,
     resolution: [u32; 2],
+    /// Thin lens: aperture radius in world units (0, the default: a pinhole).
+    #[serde(default)]
+    aperture_radius: f32,
+    /// Thin lens: distance of the plane in focus along the view axis (default: the distance
+    /// to `look_at`).
+    focus_distance: Option<f32>,
 }
 
 fn default_up() -> [f32; 3] {
@@ -209,6 +215,11 @@ fn build_scene(path: &Path, text: &str, dir: &Path, file: SceneFile) -> Result<S
         c.resolution[0],
         c.resolution[1],
     )
+    .and_then(|cam| {
+        let to_target = Vec3::from(c.look_at) - Vec3::from(c.position);
+        let focus = c.focus_distance.unwrap_or(to_target.length());
+        cam.with_lens(c.aperture_radius, focus)
+    })
     .map_err(|m| Error::invalid(path, m))?;
 
     // ---- Render settings ----

@@ -110,7 +110,8 @@ fn incident_dirs() -> [Vec3; 3] {
     ]
 }
 
-/// Rough conductors (GGX and Beckmann, α 0.1, 0.3, 0.7), rough and smooth plastics, each from
+/// Rough conductors (GGX and Beckmann, α 0.1, 0.3, 0.7, and anisotropic ones), rough and
+/// smooth plastics, each from
 /// three incident directions, alternately two-sided seen from below and one-sided seen from
 /// above; one-sided ones seen from below (they scatter nothing) and a tilted shading normal.
 fn mitsuba_configs() -> Vec<Config> {
@@ -149,6 +150,36 @@ fn mitsuba_configs() -> Vec<Config> {
                 );
                 i += 1;
             }
+        }
+    }
+    // Anisotropic rough conductors: α_u along the local x axis, α_v along y, the narrow
+    // direction along either axis, from incident azimuths off the axes.
+    for (kind, alpha_u, alpha_v) in [
+        (Microfacet::Ggx, 0.08f32, 0.4f32),
+        (Microfacet::Ggx, 0.6, 0.2),
+        (Microfacet::Beckmann, 0.3, 0.08),
+        (Microfacet::Beckmann, 0.15, 0.6),
+    ] {
+        for (j, wo) in incident_dirs().into_iter().enumerate() {
+            let m = Material {
+                microfacet: kind,
+                alpha: alpha_u,
+                alpha_v: Some(alpha_v),
+                eta: MI_ETA,
+                k: MI_K,
+                ks: MI_KS,
+                ..material(MaterialKind::RoughConductor)
+            };
+            // A finer grid about the mirror direction where a roughness is narrow.
+            let cap = (alpha_u.min(alpha_v) < 0.1).then_some(1.2);
+            push(
+                format!("roughconductor {kind:?} α_u={alpha_u} α_v={alpha_v} wo#{j}"),
+                m,
+                wo,
+                cap,
+                i,
+            );
+            i += 1;
         }
     }
     for (kind, alpha, ni, kd, ks) in [
@@ -200,6 +231,18 @@ fn mitsuba_configs() -> Vec<Config> {
             axis: None,
         });
     }
+    v.push(tilted_importance(
+        "roughconductor Beckmann α_u=0.4 α_v=0.12",
+        &Material {
+            microfacet: Microfacet::Beckmann,
+            alpha: 0.4,
+            alpha_v: Some(0.12),
+            ks: Rgb::ONE,
+            eta: MI_ETA,
+            k: MI_K,
+            ..material(MaterialKind::RoughConductor)
+        },
+    ));
     v.push(tilted_importance(
         "roughconductor GGX α=0.3",
         &Material {
@@ -309,9 +352,47 @@ pub fn rough_glass_configs() -> Vec<Config> {
             }
         }
     }
+    // Anisotropic rough dielectrics, entering and leaving, from azimuths off the axes.
+    for (kind, alpha_u, alpha_v) in [
+        (Microfacet::Ggx, 0.2f32, 0.6f32),
+        (Microfacet::Beckmann, 0.5, 0.2),
+    ] {
+        for (side, wo) in [
+            ("entering", dir(40.0, 60.0)),
+            ("leaving", dir(150.0, 230.0)),
+        ] {
+            let m = Material {
+                alpha_v: Some(alpha_v),
+                ..rough_glass(kind, alpha_u, ks, kt)
+            };
+            let mode = if i % 2 == 0 {
+                TransportMode::Radiance
+            } else {
+                TransportMode::Importance
+            };
+            i += 1;
+            v.push(Config {
+                name: format!(
+                    "roughdielectric {kind:?} α_u={alpha_u} α_v={alpha_v} {side} {mode:?}"
+                ),
+                bsdf: flat_bsdf(&m),
+                wo,
+                mode,
+                cap: None,
+                axis: None,
+            });
+        }
+    }
     v.push(tilted_importance(
         "roughdielectric GGX α=0.3",
         &rough_glass(Microfacet::Ggx, 0.3, ks, kt),
+    ));
+    v.push(tilted_importance(
+        "roughdielectric GGX α_u=0.15 α_v=0.45",
+        &Material {
+            alpha_v: Some(0.45),
+            ..rough_glass(Microfacet::Ggx, 0.15, ks, kt)
+        },
     ));
     v
 }

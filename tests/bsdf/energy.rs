@@ -69,7 +69,7 @@ fn albedo(b: &Bsdf, wo: Vec3, n: usize, rng: &mut Rng) -> (f64, f64) {
 }
 
 /// White furnace: a rough conductor of a strongly reflecting metal (silver) with `ks = 1`
-/// reflects at most all the light, as do plastics with a white base. Mitsuba's plastics
+/// (isotropic or anisotropic) reflects at most all the light, as do plastics with a white base. Mitsuba's plastics
 /// conserve energy only up to the accuracy of their diffuse-Fresnel fit (smooth) and tables
 /// (rough): about 0.1% at η = 1.5, so 0.2% is allowed on top for them.
 ///
@@ -93,6 +93,19 @@ fn white_furnace() {
                 ..material(MaterialKind::RoughConductor)
             };
             cases.push((format!("roughconductor {kind:?} α={alpha}"), m, 0.0));
+        }
+        for (alpha_u, alpha_v) in [(0.05f32, 0.5f32), (0.8, 0.2)] {
+            let m = Material {
+                microfacet: kind,
+                alpha: alpha_u,
+                alpha_v: Some(alpha_v),
+                eta: silver_eta,
+                k: silver_k,
+                ks: Rgb::ONE,
+                ..material(MaterialKind::RoughConductor)
+            };
+            let name = format!("roughconductor {kind:?} α_u={alpha_u} α_v={alpha_v}");
+            cases.push((name, m, 0.0));
         }
     }
     let white = |kind| Material {

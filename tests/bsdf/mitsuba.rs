@@ -35,6 +35,15 @@ pub fn mitsuba_material(name: &str) -> Material {
         "roughconductor_ggx_a0.4" => conductor(rough(RoughConductor, Ggx, 0.4)),
         "roughconductor_beckmann_a0.1" => conductor(rough(RoughConductor, Beckmann, 0.1)),
         "roughconductor_beckmann_a0.4" => conductor(rough(RoughConductor, Beckmann, 0.4)),
+        // Anisotropic: α_u along the local x axis, α_v along y.
+        "roughconductor_ggx_u0.1_v0.4" => Material {
+            alpha_v: Some(0.4),
+            ..conductor(rough(RoughConductor, Ggx, 0.1))
+        },
+        "roughconductor_beckmann_u0.5_v0.15" => Material {
+            alpha_v: Some(0.15),
+            ..conductor(rough(RoughConductor, Beckmann, 0.5))
+        },
         "roughplastic_ggx_a0.2" => plastic(rough(RoughPlastic, Ggx, 0.2), 1.5, MI_KD, MI_KS, false),
         "roughplastic_beckmann_a0.3" => plastic(
             rough(RoughPlastic, Beckmann, 0.3),
@@ -191,6 +200,26 @@ const MITSUBA_EVAL: &[EvalRow] = &[
     ("plastic_nonlinear", [80.0, 10.0], [75.0, 200.0], [4.7876753e-02, 1.7625868e-02, 7.7863148e-03], 2.7465338e-02),
     ("plastic_nonlinear", [45.0, 0.0], [50.0, 170.0], [9.5374158e-02, 3.5112078e-02, 1.5510934e-02], 1.6436857e-01),
     ("plastic_nonlinear", [87.0, 0.0], [40.0, 90.0], [2.6164622e-02, 9.6325282e-03, 4.2552168e-03], 2.5364641e-02),
+    ("roughconductor_ggx_u0.1_v0.4", [30.0, 0.0], [35.0, 180.0], [1.6603496e+00, 1.2427044e+00, 8.0077189e-01], 1.6253247e+00),
+    ("roughconductor_ggx_u0.1_v0.4", [0.0, 0.0], [10.0, 40.0], [7.9649174e-01, 5.9625657e-01, 3.8225715e-01], 9.3615353e-01),
+    ("roughconductor_ggx_u0.1_v0.4", [60.0, 0.0], [20.0, 120.0], [9.4475870e-03, 7.0709510e-03, 4.5672197e-03], 1.0641971e-02),
+    ("roughconductor_ggx_u0.1_v0.4", [80.0, 10.0], [75.0, 200.0], [2.6924990e+00, 2.1308421e+00, 1.7890615e+00], 9.0396333e-01),
+    ("roughconductor_ggx_u0.1_v0.4", [45.0, 0.0], [50.0, 170.0], [2.6501096e+00, 1.9845383e+00, 1.3048387e+00], 2.0478551e+00),
+    ("roughconductor_ggx_u0.1_v0.4", [87.0, 0.0], [40.0, 90.0], [1.0454895e-02, 7.8263924e-03, 5.1095429e-03], 9.8349769e-03),
+    ("roughconductor_ggx_u0.1_v0.4", [40.0, 90.0], [45.0, 270.0], [2.8238738e+00, 2.1137442e+00, 1.3767996e+00], 2.4779825e+00),
+    ("roughconductor_ggx_u0.1_v0.4", [50.0, 60.0], [30.0, 250.0], [3.2185551e-01, 2.4089580e-01, 1.5630440e-01], 3.3685109e-01),
+    ("roughconductor_ggx_u0.1_v0.4", [20.0, 135.0], [60.0, 300.0], [3.3894011e-01, 2.5368223e-01, 1.6457461e-01], 2.1957140e-01),
+    ("roughconductor_ggx_u0.1_v0.4", [70.0, 300.0], [65.0, 110.0], [3.1667421e-01, 2.4127860e-01, 1.7655396e-01], 1.8379673e-01),
+    ("roughconductor_beckmann_u0.5_v0.15", [30.0, 0.0], [35.0, 180.0], [1.2483362e+00, 9.3432918e-01, 6.0206154e-01], 1.2205086e+00),
+    ("roughconductor_beckmann_u0.5_v0.15", [0.0, 0.0], [10.0, 40.0], [7.8267674e-01, 5.8591463e-01, 3.7562697e-01], 9.1940206e-01),
+    ("roughconductor_beckmann_u0.5_v0.15", [60.0, 0.0], [20.0, 120.0], [1.8265870e-01, 1.3670904e-01, 8.8302165e-02], 2.0492277e-01),
+    ("roughconductor_beckmann_u0.5_v0.15", [80.0, 10.0], [75.0, 200.0], [3.6457340e-02, 2.8852318e-02, 2.4224494e-02], 1.2967983e-02),
+    ("roughconductor_beckmann_u0.5_v0.15", [45.0, 0.0], [50.0, 170.0], [1.2891770e+00, 9.6540203e-01, 6.3475415e-01], 9.9111837e-01),
+    ("roughconductor_beckmann_u0.5_v0.15", [87.0, 0.0], [40.0, 90.0], [2.1309049e-13, 1.5951666e-13, 1.0414212e-13], 1.9510707e-13),
+    ("roughconductor_beckmann_u0.5_v0.15", [40.0, 90.0], [45.0, 270.0], [1.5118009e+00, 1.1316231e+00, 7.3708922e-01], 1.2774214e+00),
+    ("roughconductor_beckmann_u0.5_v0.15", [50.0, 60.0], [30.0, 250.0], [7.6182572e-01, 5.7019566e-01, 3.6996947e-01], 7.8807312e-01),
+    ("roughconductor_beckmann_u0.5_v0.15", [20.0, 135.0], [60.0, 300.0], [9.0531232e-03, 6.7758765e-03, 4.3958039e-03], 5.4068114e-03),
+    ("roughconductor_beckmann_u0.5_v0.15", [70.0, 300.0], [65.0, 110.0], [5.0145964e+00, 3.8206923e+00, 2.7957655e+00], 2.5457535e+00),
 ];
 // (name, cos(wo), lobe sample number, sample weight, discrete probability)
 #[rustfmt::skip]

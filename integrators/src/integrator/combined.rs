@@ -42,7 +42,6 @@ impl Integrator for Combined {
         state: &mut SamplerState<'a>,
         out: &mut [Rgb],
     ) {
-        let position = ctx.scene.camera.position;
         let densities = ctx.densities();
         // The second-moment layers, when asked for, follow the three (`crate::moments`).
         let c = if out.len() > 3 {
@@ -50,14 +49,14 @@ impl Integrator for Combined {
                 guided: false,
                 ..ctx.densities()
             };
-            let share = PilotMis {
-                main: CameraMis::new(position, &densities),
-                unguided: CameraMis::new(position, &unguided),
+            let share = |lens| PilotMis {
+                main: CameraMis::new(lens, &densities),
+                unguided: CameraMis::new(lens, &unguided),
                 horizon: ctx.moments,
             };
             path_tracing::camera_path(ctx, raster, rng, state, share)
         } else {
-            let share = CameraMis::new(position, &densities);
+            let share = |lens| CameraMis::new(lens, &densities);
             path_tracing::camera_path(ctx, raster, rng, state, share)
         };
         out[0] += c.share;

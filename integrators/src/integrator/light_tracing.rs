@@ -1,8 +1,9 @@
 //! Light tracing (Veach 1997, §10.3; Dutré et al. 1993), guided or not: paths start on the
 //! lights (chosen in proportion to power), every scattering direction comes from the
 //! direction sampler (BSDF, grid or footprint over the importance map), and every
-//! non-specular vertex, the light vertex included, is connected to the pinhole camera and
-//! splatted onto the film. At area lights the emission direction is guided too
+//! non-specular vertex, the light vertex included, is connected to the camera (a point sampled
+//! on its lens, with one more pair of numbers per connection, where it has one) and splatted
+//! onto the film. At area lights the emission direction is guided too
 //! ([`crate::emit`]).
 //!
 //! Normalisation. With `N = n P` light paths (`n` passes of one path per each of the `P`
@@ -39,7 +40,7 @@ use footprint::film::SplatList;
 use footprint::guide::sampler::{DirectionSample, SamplerState};
 use footprint::rng::Rng;
 use footprint::scene::Scene;
-use footprint::scene::camera::Camera;
+use footprint::scene::camera::{Camera, CameraConnection};
 use footprint::scene::features::Features;
 use footprint::scene::light::Light;
 use glam::{Vec2, Vec3};
@@ -91,34 +92,36 @@ pub fn light_path<'a, W: LightShare>(
 
 /// A second estimate a light path feeds, with its own weights for the same connections.
 pub trait LightShare: Copy {
-    /// The strategies (and so the weight) of the light point itself seen by the camera.
-    fn light_seen(&self, scene: &Scene, to_camera: Vec3) -> Strategies;
+    /// The strategies (and so the weight) of the light point itself seen by the camera
+    /// through the connection `c`.
+    fn light_seen(&self, scene: &Scene, c: &CameraConnection) -> Strategies;
     fn arrive(&mut self, light: &Light, v: &Vertex);
-    /// The strategies of the camera connection from `v` in direction `wi`.
-    fn connection(&self, scene: &Scene, v: &Vertex, wi: Vec3) -> Strategies;
+    /// The strategies of the camera connection `c` from `v`.
+    fn connection(&self, scene: &Scene, v: &Vertex, c: &CameraConnection) -> Strategies;
     fn scattered(&mut self, v: &Vertex, s: &DirectionSample);
 }
 
 impl LightShare for () {
-    fn light_seen(&self, _scene: &Scene, _to_camera: Vec3) -> Strategies {
+    fn light_seen(&self, _scene: &Scene, _c: &CameraConnection) -> Strategies {
         Strategies::NONE
     }
     fn arrive(&mut self, _light: &Light, _v: &Vertex) {}
-    fn connection(&self, _scene: &Scene, _v: &Vertex, _wi: Vec3) -> Strategies {
+    fn connection(&self, _scene: &Scene, _v: &Vertex, _c: &CameraConnection) -> Strategies {
         Strategies::NONE
     }
     fn scattered(&mut self, _v: &Vertex, _s: &DirectionSample) {}
 }
 
 impl LightShare for LightMis<'_> {
-    fn light_seen(&self, scene: &Scene, to_camera: Vec3) -> Strategies {
-        LightMis::light_seen(self, scene, to_camera)
+    fn light_seen(&self, scene: &Scene, c: &CameraConnection) -> Strategies {
+        LightMis::light_seen(self, scene, c.lens, c.dir_to_camera)
     }
     fn arrive(&mut self, light: &Light, v: &Vertex) {
         LightMis::arrive(self, light, v.index, -v.wo, v.hit.p, v.hit.ng);
     }
-    fn connection(&self, scene: &Scene, v: &Vertex, wi: Vec3) -> Strategies {
-        self.camera_connection(scene, v.index, &v.bsdf, v.hit.p, v.hit.ng, wi)
+    fn connection(&self, scene: &Scene, v: &Vertex, c: &CameraConnection) -> Strategies {
+        let (p, ng) = (v.hit.p, v.hit.ng);
+        self.camera_connection(scene, v.index, &v.bsdf, p, ng, c.lens, c.dir_to_camera)
     }
     fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
         LightMis::scattered(self, v.index, v.hit.p, v.hit.ng, &v.bsdf, s.delta);
@@ -127,20 +130,20 @@ impl LightShare for LightMis<'_> {
 
 /// `auto`'s pilot: the samplers' weights, and the unguided densities beside them.
 impl LightShare for PilotMis<LightMis<'_>> {
-    fn light_seen(&self, scene: &Scene, to_camera: Vec3) -> Strategies {
+    fn light_seen(&self, scene: &Scene, c: &CameraConnection) -> Strategies {
         Strategies {
-            unguided: LightShare::light_seen(&self.unguided, scene, to_camera).p,
-            ..LightShare::light_seen(&self.main, scene, to_camera)
+            unguided: LightShare::light_seen(&self.unguided, scene, c).p,
+            ..LightShare::light_seen(&self.main, scene, c)
         }
     }
     fn arrive(&mut self, light: &Light, v: &Vertex) {
         LightShare::arrive(&mut self.main, light, v);
         LightShare::arrive(&mut self.unguided, light, v);
     }
-    fn connection(&self, scene: &Scene, v: &Vertex, wi: Vec3) -> Strategies {
+    fn connection(&self, scene: &Scene, v: &Vertex, c: &CameraConnection) -> Strategies {
         Strategies {
-            unguided: LightShare::connection(&self.unguided, scene, v, wi).p,
-            ..LightShare::connection(&self.main, scene, v, wi)
+            unguided: LightShare::connection(&self.unguided, scene, v, c).p,
+            ..LightShare::connection(&self.main, scene, v, c)
         }
     }
     fn scattered(&mut self, v: &Vertex, s: &DirectionSample) {
@@ -200,22 +203,27 @@ pub fn trace<'a, F: Features, W: LightShare>(
     let weights = weights(li as u32, em.p, em.n);
 
     // ---- The light vertex seen directly by the camera (not a bounding disk of a light at
-    // infinity) ----
-    if let Some(conn) = cam.connect(em.p).filter(|_| !light.is_infinite()) {
+    // infinity), through a lens point drawn after the light's numbers ----
+    let u_lens = if light.is_infinite() {
+        Vec2::ZERO
+    } else {
+        cam.draw_lens_sample(rng)
+    };
+    if let Some(conn) = cam.connect(em.p, u_lens).filter(|_| !light.is_infinite()) {
         let cos_l = em.n.map(|n| n.dot(conn.dir_to_camera)).unwrap_or(1.0);
         if cos_l > 0.0 {
             let le = light.emitted(conn.dir_to_camera);
             // One segment, and one more per thin sheet passed through.
             let sheets = ctx.max_depth.saturating_sub(1);
             let (t, _) = match em.n {
-                Some(n) => scene.transmittance(em.p, n, cam.position, None, sheets),
-                None => scene.transmittance(cam.position, cam.frame.z, em.p, None, sheets),
+                Some(n) => scene.transmittance(em.p, n, conn.lens, None, sheets),
+                None => scene.transmittance(conn.lens, cam.frame.z, em.p, None, sheets),
             };
             if le.max_element() > 0.0 && t.max_element() > 0.0 {
                 let v = le * t * (cos_l * conn.we_geom / (em.pdf_pos * pmf));
                 lt.splat(&cam.filter, w, h, conn.raster, v);
                 if let Some(s) = share.as_mut() {
-                    let st = weights.light_seen(scene, conn.dir_to_camera);
+                    let st = weights.light_seen(scene, &conn);
                     s.splat(cam, conn.raster, v, &st, 1.0);
                 }
             }
@@ -274,7 +282,7 @@ impl<W: LightShare, F: Features> Visitor for LightVisitor<'_, '_, W, F> {
     type F = F;
 
     // ---- Connect to the camera ----
-    fn reached(&mut self, v: &Vertex, _from: &Arrival) {
+    fn reached(&mut self, v: &Vertex, _from: &Arrival, rng: &mut Rng) {
         let scene = self.scene;
         if self.share.is_some() {
             self.weights.arrive(self.light, v);
@@ -283,7 +291,7 @@ impl<W: LightShare, F: Features> Visitor for LightVisitor<'_, '_, W, F> {
             return;
         }
         let cam = &scene.camera;
-        let Some(conn) = cam.connect(v.hit.p) else {
+        let Some(conn) = cam.connect(v.hit.p, cam.draw_lens_sample(rng)) else {
             return;
         };
         let wi = conn.dir_to_camera;
@@ -293,7 +301,7 @@ impl<W: LightShare, F: Features> Visitor for LightVisitor<'_, '_, W, F> {
         }
         // The connection closes depth + 1 segments, and one more per thin sheet.
         let sheets = self.max_depth.saturating_sub(v.depth + 1);
-        let (t, _) = scene.transmittance(v.hit.p, v.hit.ng, cam.position, None, sheets);
+        let (t, _) = scene.transmittance(v.hit.p, v.hit.ng, conn.lens, None, sheets);
         if t.max_element() <= 0.0 {
             return;
         }
@@ -302,7 +310,7 @@ impl<W: LightShare, F: Features> Visitor for LightVisitor<'_, '_, W, F> {
         self.lt.splat(&cam.filter, w, h, conn.raster, value);
         match self.share.as_mut() {
             Some(s) => {
-                let st = self.weights.connection(scene, v, wi);
+                let st = self.weights.connection(scene, v, &conn);
                 s.splat(cam, conn.raster, value, &st, v.survival);
                 // The combined image is the estimate its light paths serve.
                 self.learning.credit(value * st.weight());

@@ -58,23 +58,27 @@ impl Integrator for PathTracing {
         state: &mut SamplerState<'a>,
         out: &mut [Rgb],
     ) {
-        out[0] += camera_path(ctx, raster, rng, state, ()).pt;
+        out[0] += camera_path(ctx, raster, rng, state, |_| ()).pt;
     }
 }
 
-/// One camera path through `raster` in the render's compiled loop, feeding `share`.
+/// One camera path through `raster` in the render's compiled loop, feeding the share
+/// `share(lens point)` makes at the camera vertex (a point sampled on the lens: the numbers
+/// after the raster position's, drawn only where the camera has a lens).
 pub fn camera_path<'a, S: CameraShare>(
     ctx: &Context<'a>,
     raster: Vec2,
     rng: &mut Rng,
     state: &mut SamplerState<'a>,
-    share: S,
+    share: impl FnOnce(Vec3) -> S,
 ) -> CameraContribution {
     let cam = &ctx.scene.camera;
+    let (origin, dir) = cam.ray(raster, cam.draw_lens_sample(rng));
+    let share = share(origin);
     crate::specialised!(ctx.specialisation, F => trace::<F, _>(
         ctx.scene,
-        cam.position,
-        cam.ray_dir(raster),
+        origin,
+        dir,
         (ctx.max_depth, ctx.rr_depth),
         &ctx.camera_sampler,
         state,
@@ -183,7 +187,7 @@ pub fn radiance_along(
 
 /// Traces one camera path from `origin` along `dir` with `(max_depth, rr_depth)`, in the
 /// loop compiled for the effects `F`; `share` receives the second estimate's weights (its
-/// `origin` must be the camera position).
+/// `origin` must be the camera vertex: the lens point the ray starts from).
 #[allow(clippy::too_many_arguments)]
 pub fn trace<'a, F: Features, S: CameraShare>(
     scene: &Scene,
@@ -273,7 +277,7 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
     }
 
     // ---- Emission found by the sampled ray ----
-    fn reached(&mut self, v: &Vertex, from: &Arrival) {
+    fn reached(&mut self, v: &Vertex, from: &Arrival, _rng: &mut Rng) {
         if S::ACTIVE {
             self.share.arrive(self.scene, v);
         }

@@ -8,7 +8,8 @@
 //!   importance mode; each carries flux `Φ_p`;
 //! * the **view pass** shoots importons from the camera through the image, uniformly in
 //!   raster position, which distributes them like the camera's importance `W_e` (the first
-//!   segment's weight `W_e cos θ / pdf` is exactly 1 for a pinhole), and traces them in
+//!   segment's weight `W_e cos θ / pdf` is exactly 1, from a pinhole or from a point sampled
+//!   on a thin lens), and traces them in
 //!   radiance mode; each carries importance `W_p` per channel, which starts equal in all
 //!   channels and is multiplied by the colours the path passes through.
 //!

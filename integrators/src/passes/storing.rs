@@ -52,7 +52,7 @@ impl<F: Features> Visitor for Storing<'_, F> {
         self.out.escaped[k] += beta;
     }
 
-    fn reached(&mut self, v: &Vertex, _from: &Arrival) {
+    fn reached(&mut self, v: &Vertex, _from: &Arrival, _rng: &mut Rng) {
         if guides_at_bsdf(&v.bsdf, self.soft_glossy_max) {
             let n = if v.hit.ng.dot(v.wo) >= 0.0 {
                 v.hit.ng

@@ -26,9 +26,11 @@ pub fn view_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> Pa
         let mut rng = Rng::new(s.seed, DOMAIN_VIEW_PASS, i as u64);
         let raster = rng.uniform2() * size;
         let w = inv_n * s.target.as_ref().map_or(1.0, |t| t.at_raster(raster, size));
+        // From a point of the lens, as the camera paths start (the pinhole draws none).
+        let (origin, dir) = cam.ray(raster, cam.draw_lens_sample(&mut rng));
         let start = Start {
-            origin: cam.position,
-            dir: cam.ray_dir(raster),
+            origin,
+            dir,
             beta: Rgb::splat(w),
             beta0: Rgb::splat(w),
             mode: TransportMode::Radiance,

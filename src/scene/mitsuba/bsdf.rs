@@ -69,7 +69,15 @@ impl<'a, 'd> Builder<'a, 'd> {
             })
     }
 
-    fn microfacet(&self, p: &Props<'a, 'd>, node: Node) -> Result<(Microfacet, f32)> {
+    /// The microfacet distribution, roughness `α` (of an anisotropic one `α_u`) and, where
+    /// `anisotropic` and `alpha_u` differs from `alpha_v`, `α_v` (else the isotropic
+    /// `sqrt(α_u α_v)` stands in, lenient).
+    fn microfacet(
+        &self,
+        p: &Props<'a, 'd>,
+        node: Node,
+        anisotropic: bool,
+    ) -> Result<(Microfacet, f32, Option<f32>)> {
         let dist = match p.string("distribution")?.as_deref().unwrap_or("beckmann") {
             "beckmann" => Microfacet::Beckmann,
             "ggx" => Microfacet::Ggx,
@@ -80,39 +88,46 @@ impl<'a, 'd> Builder<'a, 'd> {
                 ));
             }
         };
-        let alpha = match (p.float("alpha")?, p.float("alpha_u")?, p.float("alpha_v")?) {
-            (Some(a), None, None) => a,
+        let (alpha, alpha_v) = match (p.float("alpha")?, p.float("alpha_u")?, p.float("alpha_v")?) {
+            (Some(a), None, None) => (a, None),
+            (None, Some(u), Some(v)) if u == v => (u, None),
+            (None, Some(u), Some(v)) if anisotropic => (u, Some(v)),
             (None, Some(u), Some(v)) => {
                 if (u - v).abs() > 1e-6 * u.max(v) {
                     self.doc.unsupported(
                         node,
-                        "anisotropic roughness (alpha_u != alpha_v)",
-                        "isotropic alpha",
+                        "anisotropic roughness (alpha_u != alpha_v) here",
+                        "isotropic alpha (anisotropy in roughconductor and roughdielectric)",
                         &format!(
                             "isotropic alpha = sqrt(alpha_u alpha_v) = {}",
                             (u * v).sqrt()
                         ),
                     )?;
                 }
-                (u * v).sqrt()
+                ((u * v).sqrt(), None)
             }
-            (None, None, None) => 0.1,
+            (None, None, None) => (0.1, None),
             _ => {
                 return Err(self
                     .doc
                     .err(node, "give either 'alpha' or both 'alpha_u' and 'alpha_v'"));
             }
         };
-        if !(alpha > 0.0 && alpha <= 4.0) {
-            return Err(self
-                .doc
-                .err(node, format!("alpha must be in (0, 4], got {alpha}")));
+        for a in std::iter::once(alpha).chain(alpha_v) {
+            if !(a > 0.0 && a <= 4.0) {
+                return Err(self
+                    .doc
+                    .err(node, format!("alpha must be in (0, 4], got {a}")));
+            }
         }
-        if p.is_texture("alpha") {
+        if ["alpha", "alpha_u", "alpha_v"]
+            .iter()
+            .any(|n| p.is_texture(n))
+        {
             return Err(self.doc.err(node, "a textured alpha is not supported"));
         }
         p.ignore(&["sample_visible"]);
-        Ok((dist, alpha.max(1e-4)))
+        Ok((dist, alpha.max(1e-4), alpha_v.map(|v| v.max(1e-4))))
     }
 
     fn conductor_ior(&self, p: &Props<'a, 'd>, node: Node) -> Result<(Rgb, Rgb)> {
@@ -285,7 +300,7 @@ impl<'a, 'd> Builder<'a, 'd> {
                 }
                 // `tf` is the transmittance of a passage in and out: two interfaces.
                 m.tf = st * st;
-                (m.microfacet, m.alpha) = self.microfacet(&p, node)?;
+                (m.microfacet, m.alpha, m.alpha_v) = self.microfacet(&p, node, true)?;
             }
             "conductor" | "roughconductor" => {
                 (m.eta, m.k) = self.conductor_ior(&p, node)?;
@@ -295,7 +310,7 @@ impl<'a, 'd> Builder<'a, 'd> {
                     m.kind = MaterialKind::Conductor;
                 } else {
                     m.kind = MaterialKind::RoughConductor;
-                    (m.microfacet, m.alpha) = self.microfacet(&p, node)?;
+                    (m.microfacet, m.alpha, m.alpha_v) = self.microfacet(&p, node, true)?;
                 }
             }
             "plastic" | "roughplastic" => {
@@ -311,7 +326,7 @@ impl<'a, 'd> Builder<'a, 'd> {
                     m.kind = MaterialKind::Plastic;
                 } else {
                     m.kind = MaterialKind::RoughPlastic;
-                    (m.microfacet, m.alpha) = self.microfacet(&p, node)?;
+                    (m.microfacet, m.alpha, _) = self.microfacet(&p, node, false)?;
                 }
             }
             other => {

@@ -109,6 +109,18 @@ impl<'a, 'd> Builder<'a, 'd> {
             )?;
             return Ok(m);
         }
+        // The lobes are evaluated in a frame about the tilted normal whose tangent does not
+        // follow ∂p/∂u, which an anisotropic roughness would need.
+        if m.is_anisotropic() {
+            let alpha = (m.alpha * m.alpha_v.unwrap_or(m.alpha)).sqrt();
+            self.doc.unsupported(
+                nested,
+                &format!("anisotropic roughness inside a {plugin}"),
+                "isotropic roughness",
+                &format!("isotropic alpha = sqrt(alpha_u alpha_v) = {alpha}"),
+            )?;
+            (m.alpha, m.alpha_v) = (alpha, None);
+        }
         let Some(texture) = self.texture(height)? else {
             return Ok(m);
         };

@@ -100,12 +100,28 @@ pub fn export(scene: &Scene, source: &Path, out: &Path) -> Result<ExportNotes> {
         "  <integrator type=\"path\"><integer name=\"max_depth\" value=\"$max_depth\"/></integrator>"
     );
     let target = cam.position.as_dvec3() + cam.frame.z.as_dvec3();
-    let _ = writeln!(x, "  <sensor type=\"perspective\">");
+    let _ = writeln!(
+        x,
+        "  <sensor type=\"{}\">",
+        if cam.has_lens() {
+            "thinlens"
+        } else {
+            "perspective"
+        }
+    );
     let _ = writeln!(
         x,
         "    <float name=\"fov\" value=\"{:?}\"/><string name=\"fov_axis\" value=\"y\"/>",
         cam.fov_y_deg
     );
+    if cam.has_lens() {
+        let _ = writeln!(
+            x,
+            "    <float name=\"aperture_radius\" value=\"{:?}\"/><float name=\"focus_distance\" value=\"{:?}\"/>",
+            cam.lens_radius(),
+            cam.focus_distance()
+        );
+    }
     // Mitsuba's image x runs along -(local x) = up x dir; a mirrored frame cannot be a lookat.
     if cam.frame.z.cross(cam.frame.y).dot(cam.frame.x) < 0.0 {
         return Err(Error::Other(
@@ -459,10 +475,14 @@ fn kind_xml(
             Microfacet::Beckmann => "beckmann",
             Microfacet::Ggx => "ggx",
         };
-        format!(
-            "<string name=\"distribution\" value=\"{dist}\"/><float name=\"alpha\" value=\"{:?}\"/>",
-            m.alpha
-        )
+        let alpha = match m.alpha_v {
+            Some(v) => format!(
+                "<float name=\"alpha_u\" value=\"{:?}\"/><float name=\"alpha_v\" value=\"{v:?}\"/>",
+                m.alpha
+            ),
+            None => format!("<float name=\"alpha\" value=\"{:?}\"/>", m.alpha),
+        };
+        format!("<string name=\"distribution\" value=\"{dist}\"/>{alpha}")
     };
     Ok(Kind::Reflecting(match m.kind {
         MaterialKind::Diffuse => format!(

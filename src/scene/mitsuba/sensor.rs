@@ -1,5 +1,6 @@
-//! The `<sensor>` element: the `perspective` camera with its `hdrfilm` (size and pixel
-//! filter) and sampler (samples per pixel).
+//! The `<sensor>` element: the `perspective` camera and the `thinlens` camera (the same with
+//! an aperture and a focus distance, `footprint::scene::camera`), with its `hdrfilm` (size and
+//! pixel filter) and sampler (samples per pixel).
 
 use super::builder::Builder;
 use super::xml::Props;
@@ -22,15 +23,30 @@ impl<'a, 'd> Builder<'a, 'd> {
             );
         }
         let p = Props::new(self.doc, node)?;
-        if kind != "perspective" {
-            self.doc.unsupported(
-                node,
-                &format!("sensor '{kind}'"),
-                "perspective",
-                "a pinhole camera with the same field of view",
-            )?;
-            p.ignore(&["aperture_radius", "focus_distance"]);
-        }
+        // The lens: Mitsuba's `thinlens` takes `aperture_radius` (required; 0 is made a
+        // pinhole, where Mitsuba warns and takes a radius of machine epsilon) and
+        // `focus_distance` along the view axis (default `far_clip`, itself 1e4 by default).
+        let lens = if kind == "thinlens" {
+            let Some(radius) = p.float("aperture_radius")? else {
+                return Err(self
+                    .doc
+                    .err(node, "a thinlens sensor needs 'aperture_radius'"));
+            };
+            let far_clip = p.float_or("far_clip", 1e4)?;
+            let focus = p.float_or("focus_distance", far_clip)?;
+            Some((radius, focus))
+        } else {
+            if kind != "perspective" {
+                self.doc.unsupported(
+                    node,
+                    &format!("sensor '{kind}'"),
+                    "perspective, thinlens",
+                    "a pinhole camera with the same field of view",
+                )?;
+                p.ignore(&["aperture_radius"]);
+            }
+            None
+        };
         let m = p.transform("to_world")?.unwrap_or(Mat4::IDENTITY);
         let fov = p.float("fov")?;
         if fov.is_none() && p.get("focal_length").is_some() {
@@ -47,6 +63,7 @@ impl<'a, 'd> Builder<'a, 'd> {
         }
         let axis = p.string("fov_axis")?.unwrap_or_else(|| "x".into());
         // A pinhole's focus distance changes nothing; Mitsuba's `perspective` accepts it too.
+        // The clipping planes are not modelled (read above for `thinlens`'s default focus).
         p.ignore(&[
             "near_clip",
             "far_clip",
@@ -162,6 +179,16 @@ impl<'a, 'd> Builder<'a, 'd> {
         let fov_y = 2.0 * tan_half_y.atan().to_degrees();
         // Mitsuba's camera looks along local +z with +y up; its image's x runs along local -x.
         let position = m.transform_point3(Vec3::ZERO);
+        // Mitsuba's `thinlens` refuses a scaled to_world (its aperture is in world units).
+        let scaled = [Vec3::X, Vec3::Y, Vec3::Z]
+            .iter()
+            .any(|a| (m.transform_vector3(*a).length() - 1.0).abs() > 1e-3);
+        if lens.is_some() && scaled {
+            return Err(self.doc.err(
+                node,
+                "scale factors in a thinlens sensor's to_world are not allowed (as in Mitsuba)",
+            ));
+        }
         let forward = m.transform_vector3(Vec3::Z).try_normalize();
         let up = m.transform_vector3(Vec3::Y).try_normalize();
         let left = m.transform_vector3(Vec3::X).try_normalize();
@@ -183,6 +210,10 @@ impl<'a, 'd> Builder<'a, 'd> {
             z: forward,
         };
         let mut camera = Camera::from_frame(position, frame, fov_y, width, height)
+            .and_then(|c| match lens {
+                Some((radius, focus)) => c.with_lens(radius, focus),
+                None => Ok(c),
+            })
             .map_err(|e| self.doc.err(node, e))?;
         camera.filter = PixelFilter::new(filter);
         self.camera = Some(camera);
