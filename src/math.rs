@@ -53,6 +53,19 @@ impl Frame {
         Frame { x, y, z: n }
     }
 
+    /// A frame around the unit vector `n` whose `x` is `tangent` made orthogonal to it and
+    /// `y = n × x` (Mitsuba's `SurfaceInteraction::initialize_sh_frame`, Gram-Schmidt of
+    /// `∂p/∂u`); `None` where the tangent has no part orthogonal to `n`.
+    #[inline]
+    pub fn from_z_and_tangent(n: Vec3, tangent: Vec3) -> Option<Self> {
+        let x = (tangent - n * n.dot(tangent)).try_normalize()?;
+        Some(Frame {
+            x,
+            y: n.cross(x),
+            z: n,
+        })
+    }
+
     #[inline]
     pub fn to_local(&self, v_world: Vec3) -> Vec3 {
         Vec3::new(

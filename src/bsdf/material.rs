@@ -10,11 +10,13 @@
 //!
 //! Mitsuba 3 scenes (`crate::scene::mitsuba`) add the kinds Mitsuba's BSDFs need: smooth and rough
 //! conductors with a complex index of refraction, smooth and rough plastic, the rough
-//! dielectric and the thin dielectric sheet; the mapping is tabled in `docs/mitsuba.md`.
+//! dielectric, the thin dielectric sheet and the principled BSDF; the mapping is tabled in
+//! `docs/mitsuba.md`.
 
 use crate::Rgb;
 use crate::bsdf::bump::BumpMap;
 use crate::bsdf::microfacet::Microfacet;
+use crate::bsdf::principled::PrincipledParams;
 use crate::bsdf::rough_plastic::RoughPlasticTables;
 
 /// The kind of scattering a material does.
@@ -47,6 +49,9 @@ pub enum MaterialKind {
     /// Thin dielectric sheet of IOR `ni` (Mitsuba `thindielectric`): reflection and straight
     /// transmission with the multiple internal reflections summed.
     ThinGlass,
+    /// Mitsuba's `principled` (the Disney BSDF): base colour `kd` (and `kd_texture`), the
+    /// other parameters in `principled`.
+    Principled,
 }
 
 impl MaterialKind {
@@ -107,6 +112,8 @@ pub struct Material {
     pub rough_plastic: Option<&'static RoughPlasticTables>,
     /// A height field that tilts the shading normal (Mitsuba `bumpmap` around this material).
     pub bump: Option<BumpMap>,
+    /// Principled: the parameters but the base colour.
+    pub principled: PrincipledParams,
 }
 
 impl Default for Material {
@@ -130,6 +137,7 @@ impl Default for Material {
             ke: Rgb::ZERO,
             rough_plastic: None,
             bump: None,
+            principled: PrincipledParams::default(),
         }
     }
 }

@@ -20,9 +20,10 @@ pub mod toml_file;
 
 use crate::bsdf::bump::{Bump, BumpMap, NormalSource, bumped_normal, mapped_normal, uv_partials};
 use crate::bsdf::material::{Material, MaterialKind};
+use crate::bsdf::principled::texture_value;
 use crate::bsdf::{Bsdf, Lobes, SurfaceLobes};
 use crate::features::{Features, General};
-use crate::math::Rgb;
+use crate::math::{Frame, Rgb};
 use crate::sampling::Distribution1D;
 use crate::scene::accel::Accel;
 use crate::scene::camera::Camera;
@@ -392,7 +393,17 @@ impl Scene {
             Some(t) => m.ks * self.textures[t as usize].lookup(hit.uv),
             None => m.ks,
         };
-        let mut bsdf = Bsdf::new(Lobes::new(m, kd, ks), hit.ns, hit.facing_ng());
+        let lobes = Lobes::new_at(m, kd, ks, |t| {
+            F::TEXTURES.then(|| texture_value(self.textures[t as usize].lookup(hit.uv)))
+        });
+        let mut bsdf = Bsdf::new(lobes, hit.ns, hit.facing_ng());
+        if bsdf.lobes.is_anisotropic() {
+            // Mitsuba's shading frame: the tangent is ∂p/∂u made orthogonal to the normal.
+            let (dp_du, _) = self.uv_partials(hit);
+            if let Some(frame) = Frame::from_z_and_tangent(bsdf.frame.z, dp_du) {
+                bsdf.frame = frame;
+            }
+        }
         if F::TEXTURES
             && let Some(map) = &m.bump
         {
@@ -401,11 +412,21 @@ impl Scene {
         bsdf
     }
 
+    /// The partials `∂p/∂u`, `∂p/∂v` of the hit's triangle in Mitsuba's texture coordinates
+    /// (`(u, 1 - v)` of the stored ones; the importer stores barycentric ones on a mesh
+    /// without any, as Mitsuba parametrises it); zero where the parametrisation is degenerate.
+    fn uv_partials(&self, hit: &SurfaceHit) -> (Vec3, Vec3) {
+        let g = &self.triangles[hit.triangle as usize];
+        let uv = self.shading[hit.triangle as usize]
+            .uvs
+            .map(|uv| uv.map(|t| Vec2::new(t.x, 1.0 - t.y)))
+            .unwrap_or([Vec2::ZERO, Vec2::X, Vec2::Y]);
+        uv_partials(g.e1, g.e2, uv)
+    }
+
     /// The bump of `map` at `hit` for the BSDF `bsdf` there ([`crate::bsdf::bump`]), from
-    /// the triangle's partials `∂p/∂u`, `∂p/∂v` in Mitsuba's texture coordinates (`(u, 1 - v)`
-    /// of the stored ones; the importer stores barycentric ones on a mesh without any, as
-    /// Mitsuba parametrises it) and the texture at the hit's coordinates: a height field's
-    /// gradient, or a normal map's colour. `None` where the gradient is zero (the shading
+    /// the triangle's partials ([`Scene::uv_partials`]) and the texture at the hit's
+    /// coordinates: a height field's gradient, or a normal map's colour. `None` where the gradient is zero (the shading
     /// frame stays exactly the surface's) or the parametrisation is degenerate (no normal to
     /// tilt to).
     fn bump_at(&self, map: &BumpMap, hit: &SurfaceHit, bsdf: &Bsdf) -> Option<Bump> {
@@ -420,12 +441,7 @@ impl Scene {
             }
             NormalSource::Normals => None,
         };
-        let g = &self.triangles[hit.triangle as usize];
-        let uv = self.shading[hit.triangle as usize]
-            .uvs
-            .map(|uv| uv.map(|t| Vec2::new(t.x, 1.0 - t.y)))
-            .unwrap_or([Vec2::ZERO, Vec2::X, Vec2::Y]);
-        let (dp_du, dp_dv) = uv_partials(g.e1, g.e2, uv);
+        let (dp_du, dp_dv) = self.uv_partials(hit);
         let n = match grad {
             Some(grad) => bumped_normal(hit.ns, bsdf.ng, dp_du, dp_dv, grad)?,
             None => mapped_normal(hit.ns, dp_du, texture.lookup(hit.uv))?,

@@ -37,7 +37,7 @@ const NAMED_IOR: &[(&str, f32)] = &[
     ("diamond", 2.419),
 ];
 
-const BSDFS: &str = "diffuse, twosided, bumpmap, normalmap, dielectric, thindielectric, roughdielectric, conductor, roughconductor, plastic, roughplastic";
+const BSDFS: &str = "diffuse, twosided, bumpmap, normalmap, dielectric, thindielectric, roughdielectric, conductor, roughconductor, plastic, roughplastic, principled";
 
 impl<'a, 'd> Builder<'a, 'd> {
     fn ior(&self, p: &Props<'a, 'd>, name: &str, default: f32) -> Result<f32> {
@@ -194,9 +194,20 @@ impl<'a, 'd> Builder<'a, 'd> {
                     .into_iter()
                     .filter(|n| n.has_tag_name("bsdf"))
                     .collect();
+                let transmits = |m: &Material| {
+                    m.kind == MaterialKind::Principled && m.principled.may_transmit()
+                };
                 match inner.as_slice() {
                     [b] => {
                         let mut im = self.bsdf(*b)?;
+                        if transmits(&im) {
+                            // Mitsuba: "Only materials without a transmission component can
+                            // be nested!"
+                            return Err(self.doc.err(
+                                node,
+                                "twosided cannot hold a principled BSDF with 'spec_trans' (it transmits), as in Mitsuba",
+                            ));
+                        }
                         im.two_sided = true;
                         im.name = m.name;
                         m = im;
@@ -285,6 +296,7 @@ impl<'a, 'd> Builder<'a, 'd> {
                     (m.microfacet, m.alpha) = self.microfacet(&p, node)?;
                 }
             }
+            "principled" => self.principled(&p, node, &mut m)?,
             "plastic" | "roughplastic" => {
                 let int = self.ior(&p, "int_ior", 1.49)?;
                 let ext = self.ior(&p, "ext_ior", 1.000277)?;
