@@ -67,7 +67,7 @@ use crate::Rgb;
 use crate::bsdf::fresnel::fresnel_dielectric;
 use crate::bsdf::microfacet::{Microfacet, MicrofacetDistribution};
 use crate::bsdf::surface::TransportMode;
-use crate::math::{INV_PI, PI, safe_sqrt};
+use crate::math::{INV_PI, PI, luminance_mitsuba, safe_sqrt};
 use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use glam::{Vec2, Vec3};
 
@@ -195,8 +195,8 @@ impl PrincipledParams {
     }
 
     /// The lobes with base colour `base_color` (already textured) and the textured scalars'
-    /// values from `lookup` (a texture index to the texture's value at the point,
-    /// [`texture_value`]; `None` where textures are not looked up: the scalar's `value`).
+    /// values from `lookup` (a texture index to the texture's scalar value at the point,
+    /// `Texture::lookup_1`; `None` where textures are not looked up: the scalar's `value`).
     pub fn at(&self, base_color: Rgb, lookup: impl Fn(u32) -> Option<f32>) -> Principled {
         let roughness = self.roughness.at(&lookup);
         let (alpha_u, alpha_v) = alphas(roughness, self.anisotropic.at(&lookup));
@@ -255,19 +255,6 @@ pub struct Principled {
     /// GTR1's `α_c = lerp(0.1, 0.001, clearcoat_gloss)`.
     pub clearcoat_alpha: f32,
     pub rates: SamplingRates,
-}
-
-/// Mitsuba's `luminance` of a linear RGB colour.
-#[inline]
-fn luminance(c: Rgb) -> f32 {
-    0.212671 * c.x + 0.715160 * c.y + 0.072169 * c.z
-}
-
-/// The value of a scalar parameter's texture whose lookup is `c`: its luminance, as
-/// Mitsuba's `eval_1` of a colour texture (the grey value of a grey one).
-#[inline]
-pub fn texture_value(c: Rgb) -> f32 {
-    luminance(c)
 }
 
 /// `(1 - cos)⁵` with the cosine clamped to [0, 1] (Mitsuba's `schlick_weight`).
@@ -506,7 +493,7 @@ impl Principled {
     /// The base colour over its luminance (white where it is black).
     #[inline]
     fn tint(&self) -> Rgb {
-        let lum = luminance(self.base_color);
+        let lum = luminance_mitsuba(self.base_color);
         if lum > 0.0 {
             self.base_color / lum
         } else {

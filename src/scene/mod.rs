@@ -20,7 +20,6 @@ pub mod toml_file;
 
 use crate::bsdf::bump::{Bump, BumpMap, NormalSource, bumped_normal, mapped_normal, uv_partials};
 use crate::bsdf::material::{Material, MaterialKind};
-use crate::bsdf::principled::texture_value;
 use crate::bsdf::{Bsdf, Lobes, SurfaceLobes};
 use crate::features::{Features, General};
 use crate::math::{Frame, Rgb};
@@ -394,7 +393,7 @@ impl Scene {
             None => m.ks,
         };
         let lobes = Lobes::new_at(m, kd, ks, |t| {
-            F::TEXTURES.then(|| texture_value(self.textures[t as usize].lookup(hit.uv)))
+            F::TEXTURES.then(|| self.textures[t as usize].lookup_1(hit.uv))
         });
         let mut bsdf = Bsdf::new(lobes, hit.ns, hit.facing_ng());
         if bsdf.lobes.is_anisotropic() {
