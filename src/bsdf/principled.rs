@@ -13,7 +13,7 @@
 //!
 //! * **Main specular reflection** (Burley 2012, §5.4; Mitsuba's component 3): anisotropic
 //!   GGX of `α_u = max(0.001, r²/a)`, `α_v = max(0.001, r² a)`, `a = sqrt(1 - 0.9
-//!   anisotropic)` (Burley 2012, addendum B.2; `calc_dist_params`), `r` the roughness:
+//!   anisotropic)` (Burley 2012, appendix B; `calc_dist_params`), `r` the roughness:
 //!   `f = F_p D(h) G(lo, li) / (4 |cos θ_o| |cos θ_i|)` with Smith's separable masking. The
 //!   Fresnel term `F_p` (`principled_fresnel`) mixes, on the front side,
 //!   `(1 - metallic)(1 - spec_tint) F(lo·h) + metallic S(base_color) + (1 - metallic)
@@ -27,7 +27,7 @@
 //!   li·h)²)` in importance mode, divided by `η'²` in radiance mode (the solid angle's
 //!   compression, Veach 1997 §5.2).
 //! * **Clearcoat** (Burley 2012, §5.6; component 1), front side only: GTR1 of
-//!   `α_c = lerp(0.1, 0.001, clearcoat_gloss)` (Burley 2012, eq. 4: `D = (α² - 1) / (π
+//!   `α_c = lerp(0.1, 0.001, clearcoat_gloss)` (Burley 2012, appendix B: `D = (α² - 1) / (π
 //!   ln(α²) (1 + (α² - 1) cos²θ_h))`), Schlick's Fresnel of `R0 = 0.04`, GGX masking of
 //!   α 0.25, in Mitsuba's form `f = 0.25 clearcoat F D G` (without the `1/(4 cos θ_o cos
 //!   θ_i)` of a microfacet lobe: Mitsuba's value, which this reproduces).
@@ -57,11 +57,10 @@
 //! the Jacobians `1/(4 |li·h|)` (reflection) and `η'² |li·h| / (lo·h + η' li·h)²`
 //! (refraction; Walter et al. 2007, eqs. 14 and 17).
 //!
-//! Two departures from Mitsuba's `pdf`, neither of which changes an image: where Mitsuba
-//! samples nothing (from the back without transmission) the density here is 0, where
-//! Mitsuba's is the reflection's (whose value is 0 there); and the principled parameters
-//! are not clamped (Mitsuba reads them as given; the importer rejects values outside
-//! [0, 1]).
+//! One departure from Mitsuba's `pdf`, which changes no image: where Mitsuba samples
+//! nothing (from the back without transmission), the density here is 0, Mitsuba's the
+//! reflection's (whose value is 0 there). The parameters are taken as given, as Mitsuba
+//! takes them (the importer rejects constants outside [0, 1]).
 
 use crate::Rgb;
 use crate::bsdf::fresnel::fresnel_dielectric;
@@ -71,8 +70,8 @@ use crate::math::{INV_PI, PI, luminance_mitsuba, safe_sqrt};
 use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use glam::{Vec2, Vec3};
 
-/// A scalar parameter of the principled material: a constant, or a texture whose luminance
-/// is the value (Mitsuba's `eval_1`).
+/// A scalar parameter of the principled material: a constant, or a texture whose scalar
+/// value (Mitsuba's `eval_1`, `Texture::lookup_1`) is the parameter.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Scalar {
     /// The constant; for a textured parameter, what the lobes take where textures are not
@@ -222,7 +221,7 @@ impl PrincipledParams {
 }
 
 /// The main lobe's GGX roughness along the tangent and the bitangent (Mitsuba's
-/// `calc_dist_params`; Burley 2012, addendum B.2): `r²/a` and `r² a`, `a = sqrt(1 - 0.9
+/// `calc_dist_params`; Burley 2012, appendix B): `r²/a` and `r² a`, `a = sqrt(1 - 0.9
 /// anisotropic)`, each at least 0.001.
 fn alphas(roughness: f32, anisotropic: f32) -> (f32, f32) {
     let r2 = roughness * roughness;
@@ -265,19 +264,27 @@ fn schlick_weight(cos: f32) -> f32 {
     m2 * m2 * m
 }
 
-/// The dielectric Fresnel term of index `eta` for a signed cosine `cos_i` of the incident
-/// direction with the normal (negative: arriving from inside, index `1/η`), and the index
-/// ratio `η_ti` of the crossing and the signed cosine of the refracted direction (Mitsuba's
-/// `fresnel`, whose index-matched interface reflects nothing at any angle).
+/// The crossing of an interface of index `eta` (interior over exterior) at signed cosine
+/// `cos_i` of the incident direction with the normal (negative: from inside): the relative
+/// index `η_it` of the crossing, its reciprocal `η_ti`, and the refracted direction's
+/// `|cos θ_t|` (0 beyond the critical angle).
 #[inline]
-fn fresnel(cos_i: f32, eta: f32) -> (f32, f32, f32) {
+fn crossing(cos_i: f32, eta: f32) -> (f32, f32, f32) {
     let (eta_it, eta_ti) = if cos_i >= 0.0 {
         (eta, 1.0 / eta)
     } else {
         (1.0 / eta, eta)
     };
-    let cos_t2 = 1.0 - (1.0 - cos_i * cos_i) * eta_ti * eta_ti;
-    let cos_t = safe_sqrt(cos_t2);
+    let cos_t = safe_sqrt(1.0 - (1.0 - cos_i * cos_i) * eta_ti * eta_ti);
+    (eta_it, eta_ti, cos_t)
+}
+
+/// The dielectric Fresnel term of index `eta` at signed cosine `cos_i` ([`crossing`]), the
+/// crossing's `η_ti` and the signed cosine of the refracted direction (Mitsuba's `fresnel`,
+/// whose index-matched interface reflects nothing at any angle).
+#[inline]
+fn fresnel(cos_i: f32, eta: f32) -> (f32, f32, f32) {
+    let (eta_it, eta_ti, cos_t) = crossing(cos_i, eta);
     let r = if eta == 1.0 {
         0.0
     } else {
@@ -291,17 +298,8 @@ fn fresnel(cos_i: f32, eta: f32) -> (f32, f32, f32) {
 /// crossing is below 1 (Mitsuba's `calc_schlick`).
 #[inline]
 fn schlick(r0: Rgb, cos_i: f32, eta: f32) -> Rgb {
-    let (eta_it, eta_ti) = if cos_i >= 0.0 {
-        (eta, 1.0 / eta)
-    } else {
-        (1.0 / eta, eta)
-    };
-    let cos = if eta_it > 1.0 {
-        cos_i.abs()
-    } else {
-        safe_sqrt(1.0 - (1.0 - cos_i * cos_i) * eta_ti * eta_ti)
-    };
-    let w = schlick_weight(cos);
+    let (eta_it, _, cos_t) = crossing(cos_i, eta);
+    let w = schlick_weight(if eta_it > 1.0 { cos_i.abs() } else { cos_t });
     r0 + (Rgb::ONE - r0) * w
 }
 
@@ -327,7 +325,7 @@ fn smith_ggx1(v: Vec3, h: Vec3, alpha: f32) -> f32 {
     2.0 / (1.0 + (1.0 + alpha * alpha * tan2).sqrt())
 }
 
-/// GTR1 (Burley 2012, eq. 4; the clearcoat's distribution): `D(h)` per solid angle,
+/// GTR1 (Burley 2012, appendix B; the clearcoat's distribution): `D(h)` per solid angle,
 /// flushed to zero where `D cos θ <= 1e-20`, as Mitsuba's `GTR1Isotropic::eval`.
 #[inline]
 fn gtr1_d(alpha: f32, h: Vec3) -> f32 {
@@ -336,8 +334,8 @@ fn gtr1_d(alpha: f32, h: Vec3) -> f32 {
     if d * h.z > 1e-20 { d } else { 0.0 }
 }
 
-/// A GTR1 normal drawn with density `D(h) cos θ_h` (Burley 2012, addendum B.2, eq. 2:
-/// `cos²θ = (1 - α^(2(1 - u)))/(1 - α²)`).
+/// A GTR1 normal drawn with density `D(h) cos θ_h` (Burley 2012, appendix B:
+/// `cos²θ = (1 - α^(2(1 - u)))/(1 - α²)`; Mitsuba's `GTR1Isotropic::sample`).
 #[inline]
 fn gtr1_sample(alpha: f32, u: Vec2) -> Vec3 {
     let a2 = alpha * alpha;
