@@ -44,6 +44,7 @@ BUNDLED = {
     "features": dict(resx=64, resy=48, rfilter="tent", max_depth=6, batches=32, spp=256),
     "glass": dict(resx=48, resy=48, rfilter="box", max_depth=4, batches=32, spp=512),
     "roughglass": dict(resx=48, resy=48, rfilter="box", max_depth=4, batches=32, spp=512),
+    "principled": dict(resx=64, resy=48, rfilter="box", max_depth=5, batches=32, spp=512),
     "panes": dict(resx=48, resy=48, rfilter="box", max_depth=8, batches=32, spp=512),
     "slit": dict(resx=64, resy=48, rfilter="box", max_depth=10, batches=32, spp=1024),
     "ltcheck": dict(resx=32, resy=32, rfilter="box", max_depth=8, batches=32, spp=1024),

@@ -15,6 +15,13 @@ pub fn luminance(c: Rgb) -> f32 {
     0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
 }
 
+/// Mitsuba 3's `luminance` of a linear sRGB colour (its coefficients, to six digits), which
+/// its principled BSDF and its textures' scalar values (`eval_1`) read.
+#[inline]
+pub fn luminance_mitsuba(c: Rgb) -> f32 {
+    0.212671 * c.x + 0.715160 * c.y + 0.072169 * c.z
+}
+
 /// True when every channel is finite and non-negative.
 #[inline]
 pub fn is_valid_rgb(c: Rgb) -> bool {

@@ -572,6 +572,26 @@ fn anisotropic_rough_conductors_light_tracing_matches_mitsuba() {
     check(&ANISOTROPIC, "lt-bsdf", FilmMode::Splat);
 }
 
+/// `scenes/principled`: Mitsuba's `principled` on four spheres and the floor of the glass
+/// room: a checkerboard base colour with sheen, flatness and tint; an anisotropic metal whose
+/// tangent is the sphere's `∂p/∂u`; glass (`spec_trans` 1), refracting on both sides with
+/// next-event estimation through it; a clearcoat; a checkerboard roughness on the floor.
+const PRINCIPLED: Case = Case {
+    name: "principled",
+    res: (64, 48),
+    rfilter: "box",
+    max_depth: 5,
+    replicates: 16,
+    spp: 32,
+    sheets_connect: false,
+    source: Source::Bundled,
+};
+
+#[test]
+fn principled_matches_mitsuba() {
+    check(&PRINCIPLED, "pt-bsdf", FilmMode::Splat);
+}
+
 /// Filter importance sampling (one sample, one pixel) agrees too.
 #[test]
 fn cornell_with_filter_importance_sampling_matches_mitsuba() {

@@ -5,8 +5,10 @@
 
 mod common;
 
+use footprint::bsdf::Lobes;
 use footprint::bsdf::material::MaterialKind;
 use footprint::bsdf::microfacet::Microfacet;
+use footprint::bsdf::principled::PrincipledParams;
 use footprint::film::filter::{FilterKind, PixelFilter};
 use footprint::scene::Scene;
 use footprint::scene::light::Light;
@@ -349,6 +351,185 @@ fn rough_dielectric_is_read_and_written() {
     let e = bad("rd-tex", r#"<texture name="alpha" type="checkerboard"/>"#);
     assert!(
         e.contains("scene.xml:15:") && e.contains("'alpha' is a <texture>"),
+        "{e}"
+    );
+}
+
+/// `principled`: Mitsuba's defaults; every parameter, constant and as a texture (a
+/// checkerboard roughness, read at the hits); `eta` and `specular` with Mitsuba's adjustments
+/// where the material transmits; an anisotropic material's tangent along `∂p/∂u`; errors
+/// naming the element's line; and the export round trip.
+#[test]
+fn principled_is_read_and_written() {
+    let body = r#"<shape type="rectangle"><bsdf type="principled"/></shape>
+  <shape type="rectangle"><transform name="to_world"><translate x="3"/></transform>
+    <bsdf type="twosided"><bsdf type="principled"><rgb name="base_color" value="0.8, 0.2, 0.1"/>
+      <float name="metallic" value="0.3"/><float name="specular" value="0.7"/><float name="spec_tint" value="0.2"/>
+      <float name="anisotropic" value="0.5"/><float name="sheen" value="0.4"/><float name="sheen_tint" value="0.6"/>
+      <float name="clearcoat" value="0.7"/><float name="clearcoat_gloss" value="0.9"/><float name="flatness" value="0.1"/>
+      <float name="main_specular_sampling_rate" value="2"/><float name="clearcoat_sampling_rate" value="0.5"/>
+      <float name="diffuse_reflectance_sampling_rate" value="0.25"/>
+      <texture name="roughness" type="checkerboard"><float name="color0" value="0.9"/><float name="color1" value="0.1"/></texture>
+    </bsdf></bsdf></shape>
+  <shape type="rectangle"><transform name="to_world"><translate x="6"/></transform>
+    <bsdf type="principled"><float name="spec_trans" value="0.5"/><float name="eta" value="1"/></bsdf></shape>
+  <shape type="rectangle"><transform name="to_world"><translate x="9"/></transform>
+    <bsdf type="principled"><float name="spec_trans" value="1"/><float name="specular" value="0"/>
+      <texture name="base_color" type="checkerboard"><rgb name="color0" value="0.9, 0.5, 0.1"/></texture></bsdf></shape>"#;
+    let d = dir_with("principled", &[("scene.xml", &scene_xml(body))]);
+    let s = load(&d, &[], false).unwrap();
+    let at_x = |x: f32| {
+        let hit = s
+            .intersect(Vec3::new(x, 0.3, 5.0), Vec3::NEG_Z, 10.0)
+            .expect("the rectangle is hit");
+        (s.materials[hit.material as usize].clone(), hit)
+    };
+    let (m, _) = at_x(0.2);
+    assert_eq!(m.kind, MaterialKind::Principled);
+    assert!(!m.two_sided && m.kd == footprint::Rgb::splat(0.5) && m.kd_texture.is_none());
+    assert_eq!(m.principled, PrincipledParams::default());
+    assert!((m.principled.eta - 1.5).abs() < 1e-6, "specular 0.5: η 1.5");
+
+    let (m, _) = at_x(3.2);
+    let p = m.principled;
+    assert!(m.two_sided && m.kd == footprint::Rgb::new(0.8, 0.2, 0.1));
+    let constants = [
+        p.metallic,
+        p.spec_tint,
+        p.anisotropic,
+        p.sheen,
+        p.sheen_tint,
+    ];
+    assert_eq!(constants.map(|c| c.value), [0.3, 0.2, 0.5, 0.4, 0.6]);
+    assert_eq!(
+        [p.clearcoat.value, p.clearcoat_gloss.value, p.flatness.value],
+        [0.7, 0.9, 0.1]
+    );
+    assert_eq!(
+        (p.rates.diffuse, p.rates.specular, p.rates.clearcoat),
+        (0.25, 2.0, 0.5)
+    );
+    assert_eq!(p.eta, PrincipledParams::eta_of_specular(0.7));
+    assert!(p.roughness.texture.is_some() && !p.may_transmit());
+    // The checkerboard's scalar value at the hits (Mitsuba's uv of the rectangle: ((x + 1)/2,
+    // (y + 1)/2) of its local point), Mitsuba's `eval_1`: color1 (0.1) where both coordinates
+    // are below 1/2, where its colour (`eval`) is color0, and color0 (0.9) where one is above
+    // (checked with Mitsuba 3.9.1); and the anisotropic lobe's tangent is ∂p/∂u, +x.
+    for (x, y, want) in [(2.5f32, -0.5f32, 0.1f32), (3.5, -0.5, 0.9)] {
+        let hit = s
+            .intersect(Vec3::new(x, y, 5.0), Vec3::NEG_Z, 10.0)
+            .unwrap();
+        let b = s.bsdf(&hit);
+        let Lobes::Principled(l) = b.lobes else {
+            panic!("not principled")
+        };
+        assert!(
+            (l.roughness - want).abs() < 1e-6,
+            "({x}, {y}): {}",
+            l.roughness
+        );
+        assert!(l.is_anisotropic());
+        assert!(
+            (b.frame.x - Vec3::X).length() < 1e-5,
+            "tangent {}",
+            b.frame.x
+        );
+    }
+    // Transmitting: η 1 becomes 1.001, specular 0 becomes 1e-3, as Mitsuba makes them.
+    assert_eq!(at_x(6.2).0.principled.eta, 1.001);
+    let (m, _) = at_x(9.2);
+    assert_eq!(m.principled.eta, PrincipledParams::eta_of_specular(1e-3));
+    assert!(m.kd_texture.is_some() && m.principled.may_transmit());
+    assert!(s.effects.glossy && s.effects.diffuse && s.effects.textures);
+    assert!(s.effects.coloured_filtering);
+
+    // Written back and read again: the same parameters, the roughness still a texture.
+    let out = dir_with("principled-export", &[]);
+    footprint::scene::mitsuba::export::export(&s, &d.join("scene.xml"), &out).unwrap();
+    let back = load(&out, &[], false).unwrap();
+    let written: Vec<_> = s
+        .materials
+        .iter()
+        .filter(|m| m.kind == MaterialKind::Principled)
+        .collect();
+    for m in written {
+        let b = back
+            .materials
+            .iter()
+            .find(|b| {
+                b.kind == MaterialKind::Principled
+                    && b.kd == m.kd
+                    && b.two_sided == m.two_sided
+                    && b.principled.eta == m.principled.eta
+            })
+            .unwrap_or_else(|| panic!("{} not written back", m.name));
+        let texture = |p: &PrincipledParams| p.scalars().map(|(_, s)| s.texture.is_some());
+        let values = |p: &PrincipledParams| {
+            p.scalars()
+                .map(|(_, s)| s.texture.map_or(s.value, |_| -1.0))
+        };
+        assert_eq!(texture(&b.principled), texture(&m.principled), "{}", m.name);
+        assert_eq!(values(&b.principled), values(&m.principled), "{}", m.name);
+        assert_eq!(b.principled.rates, m.principled.rates);
+        assert_eq!(b.kd_texture.is_some(), m.kd_texture.is_some());
+    }
+
+    // Bad input: the element's line and what is wrong.
+    let bad =
+        |name: &str, bsdf: &str| load_err(name, &format!("<shape type=\"cube\">\n{bsdf}</shape>"));
+    let principled = |props: &str| format!("<bsdf type=\"principled\">{props}</bsdf>");
+    for (name, props, what) in [
+        (
+            "pr-rough",
+            r#"<float name="roughness" value="1.5"/>"#,
+            "'roughness' must lie in [0, 1]",
+        ),
+        (
+            "pr-base",
+            r#"<rgb name="base_color" value="1.2, 0.5, 0.5"/>"#,
+            "'base_color' must lie in [0, 1]",
+        ),
+        (
+            "pr-both",
+            r#"<float name="eta" value="1.5"/><float name="specular" value="0.5"/>"#,
+            "not both",
+        ),
+        (
+            "pr-eta",
+            r#"<float name="eta" value="-1"/>"#,
+            "'eta' must be positive",
+        ),
+        (
+            "pr-rate",
+            r#"<float name="clearcoat_sampling_rate" value="-1"/>"#,
+            "must not be negative",
+        ),
+        (
+            "pr-etatex",
+            r#"<texture name="eta" type="checkerboard"/>"#,
+            "'eta' must be a <float>",
+        ),
+        (
+            "pr-unknown",
+            r#"<float name="subsurface" value="0.5"/>"#,
+            "'subsurface'",
+        ),
+    ] {
+        let e = bad(name, &principled(props));
+        assert!(
+            e.contains("scene.xml:15:") && e.contains(what),
+            "{name}: {e}"
+        );
+    }
+    let e = bad(
+        "pr-twosided",
+        &format!(
+            "<bsdf type=\"twosided\">{}</bsdf>",
+            principled(r#"<float name="spec_trans" value="0.2"/>"#)
+        ),
+    );
+    assert!(
+        e.contains("scene.xml:15:") && e.contains("transmits"),
         "{e}"
     );
 }

@@ -6,8 +6,10 @@ use crate::bsdf::blinn::{blinn_eval, blinn_pdf, blinn_sample};
 use crate::bsdf::fresnel::{fresnel_conductor, fresnel_dielectric, fresnel_diffuse_reflectance};
 use crate::bsdf::material::{Material, MaterialKind};
 use crate::bsdf::microfacet::MicrofacetDistribution;
+use crate::bsdf::principled::Principled;
 use crate::bsdf::rough_glass::RoughGlass;
 use crate::bsdf::rough_plastic::RoughPlasticTables;
+use crate::bsdf::surface::TransportMode;
 use crate::math::{INV_PI, Rgb, luminance};
 use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use glam::{Vec2, Vec3};
@@ -69,6 +71,9 @@ pub enum Lobes {
         ks: Rgb,
         tf: Rgb,
     },
+    /// Mitsuba's `principled` ([`crate::bsdf::principled`]): reflection only, from the
+    /// front, where it does not transmit; on both sides where it does.
+    Principled(Principled),
 }
 
 /// A direction sampled from the lobes in their local frame, `wo` above the surface.
@@ -134,9 +139,22 @@ pub(super) fn specular_probability(fs: f32, spec_weight: f32) -> f32 {
 
 impl Lobes {
     /// Lobes of `material` with diffuse albedo `kd` and specular reflectance `ks` (both
-    /// already textured), with the material's sidedness.
+    /// already textured), with the material's sidedness; textured scalar parameters take
+    /// their untextured values ([`Lobes::new_at`]).
     #[allow(clippy::new_ret_no_self)]
     pub fn new(material: &Material, kd: Rgb, ks: Rgb) -> SurfaceLobes {
+        Self::new_at(material, kd, ks, |_| None)
+    }
+
+    /// [`Lobes::new`] with the textured scalar parameters (the principled material's) from
+    /// `scalar`, a texture index to the texture's value at the point (`None`: the
+    /// parameter's untextured value).
+    pub fn new_at(
+        material: &Material,
+        kd: Rgb,
+        ks: Rgb,
+        scalar: impl Fn(u32) -> Option<f32>,
+    ) -> SurfaceLobes {
         let lobes = match material.kind {
             MaterialKind::Diffuse => Lobes::Diffuse { kd },
             MaterialKind::Glossy => {
@@ -207,6 +225,7 @@ impl Lobes {
                 kt: material.tf.map(f32::sqrt),
                 distr: material.distribution(),
             }),
+            MaterialKind::Principled => Lobes::Principled(material.principled.at(kd, scalar)),
         };
         SurfaceLobes {
             lobes,
@@ -241,6 +260,7 @@ impl Lobes {
             }
             Lobes::ThinGlass { tf, .. } => tf,
             Lobes::RoughGlass(g) => g.kt,
+            Lobes::Principled(p) => p.base_color,
         }
     }
 
@@ -256,15 +276,71 @@ impl Lobes {
                 | Lobes::ThinGlass { .. }
                 | Lobes::Glass { .. }
                 | Lobes::RoughGlass(_)
+                | Lobes::Principled(_)
         )
     }
 
     /// True for the kinds that scatter through the surface (they ignore sidedness).
     pub(super) fn transmits(&self) -> bool {
-        matches!(
-            self,
-            Lobes::Glass { .. } | Lobes::ThinGlass { .. } | Lobes::RoughGlass(_)
-        )
+        match self {
+            Lobes::Glass { .. } | Lobes::ThinGlass { .. } | Lobes::RoughGlass(_) => true,
+            Lobes::Principled(p) => p.transmits(),
+            _ => false,
+        }
+    }
+
+    /// True where the lobes are anisotropic about the normal: their frame's tangent must be
+    /// the surface's `∂p/∂u`, as Mitsuba's shading frame.
+    pub fn is_anisotropic(&self) -> bool {
+        match self {
+            Lobes::RoughConductor { distr, .. } => !distr.is_isotropic(),
+            Lobes::RoughGlass(g) => !g.distr.is_isotropic(),
+            Lobes::Principled(p) => p.is_anisotropic(),
+            _ => false,
+        }
+    }
+
+    /// True for the non-delta lobes that scatter to both sides and read `wo`'s side in the
+    /// shading frame themselves (the rough dielectric, a transmitting principled): they are
+    /// evaluated and sampled by [`Lobes::eval_both_sides`], [`Lobes::pdf_both_sides`] and
+    /// [`Lobes::sample_both_sides`], whatever the surface's sidedness flag.
+    #[inline]
+    pub(super) fn scatters_both_sides(&self) -> bool {
+        match self {
+            Lobes::RoughGlass(_) => true,
+            Lobes::Principled(p) => p.transmits(),
+            _ => false,
+        }
+    }
+
+    /// `f(lo, li)` of the lobes that scatter to both sides, `lo` and `li` on either side.
+    #[inline]
+    pub(super) fn eval_both_sides(&self, lo: Vec3, li: Vec3, mode: TransportMode) -> Rgb {
+        match self {
+            Lobes::RoughGlass(g) => g.eval(lo, li, mode),
+            Lobes::Principled(p) => p.eval(lo, li, mode),
+            _ => Rgb::ZERO,
+        }
+    }
+
+    /// The density of [`Lobes::sample_both_sides`].
+    #[inline]
+    pub(super) fn pdf_both_sides(&self, lo: Vec3, li: Vec3) -> f32 {
+        match self {
+            Lobes::RoughGlass(g) => g.pdf(lo, li),
+            Lobes::Principled(p) => p.pdf(lo, li),
+            _ => 0.0,
+        }
+    }
+
+    /// Samples the lobes that scatter to both sides from `lo` on either side.
+    #[inline]
+    pub(super) fn sample_both_sides(&self, lo: Vec3, u_lobe: f32, u: Vec2) -> Option<Vec3> {
+        match self {
+            Lobes::RoughGlass(g) => g.sample(lo, u_lobe, u),
+            Lobes::Principled(p) => p.sample(lo, u_lobe, u),
+            _ => None,
+        }
     }
 
     /// Samples a reflection in the local frame from `lo` (above the surface) with the lobe
@@ -296,6 +372,7 @@ impl Lobes {
                 }
             }
             Lobes::RoughConductor { distr, .. } => reflect(lo, distr.sample_visible(lo, u)),
+            Lobes::Principled(p) => p.sample(lo, u_lobe, u)?,
             Lobes::Plastic {
                 ks,
                 eta,
@@ -367,6 +444,8 @@ impl Lobes {
                 let t = tables.transmittance(lo.z) * tables.transmittance(li.z);
                 ks * spec + diffuse * (t * INV_PI)
             }
+            // Both above: a reflection, the same in either mode.
+            Lobes::Principled(p) => p.eval(lo, li, TransportMode::Radiance),
             Lobes::Mirror { .. }
             | Lobes::Glass { .. }
             | Lobes::Conductor { .. }
@@ -407,6 +486,7 @@ impl Lobes {
                 let spec = distr.d(h) * distr.g1_sampled_front(lo) / (4.0 * lo.z);
                 ps * spec + (1.0 - ps) * cosine_hemisphere_pdf(li.z)
             }
+            Lobes::Principled(p) => p.pdf(lo, li),
             Lobes::Mirror { .. }
             | Lobes::Glass { .. }
             | Lobes::Conductor { .. }

@@ -10,11 +10,13 @@
 //!
 //! Mitsuba 3 scenes (`crate::scene::mitsuba`) add the kinds Mitsuba's BSDFs need: smooth and rough
 //! conductors with a complex index of refraction, smooth and rough plastic, the rough
-//! dielectric and the thin dielectric sheet; the mapping is tabled in `docs/mitsuba.md`.
+//! dielectric, the thin dielectric sheet and the principled BSDF; the mapping is tabled in
+//! `docs/mitsuba.md`.
 
 use crate::Rgb;
 use crate::bsdf::bump::BumpMap;
 use crate::bsdf::microfacet::{Microfacet, MicrofacetDistribution};
+use crate::bsdf::principled::PrincipledParams;
 use crate::bsdf::rough_plastic::RoughPlasticTables;
 
 /// The kind of scattering a material does.
@@ -47,6 +49,9 @@ pub enum MaterialKind {
     /// Thin dielectric sheet of IOR `ni` (Mitsuba `thindielectric`): reflection and straight
     /// transmission with the multiple internal reflections summed.
     ThinGlass,
+    /// Mitsuba's `principled` (the Disney BSDF): base colour `kd` (and `kd_texture`), the
+    /// other parameters in `principled`.
+    Principled,
 }
 
 impl MaterialKind {
@@ -120,6 +125,8 @@ pub struct Material {
     /// Mitsuba's `blendbsdf`: this material blended with a second one
     /// ([`crate::bsdf::blend`]); the fields above describe the first.
     pub blend: Option<Box<MaterialBlend>>,
+    /// Principled: the parameters but the base colour.
+    pub principled: PrincipledParams,
 }
 
 /// The second BSDF of a blend and its weight (the material holding it is the first).
@@ -157,6 +164,7 @@ impl Default for Material {
             opacity: 1.0,
             opacity_texture: None,
             blend: None,
+            principled: PrincipledParams::default(),
         }
     }
 }
@@ -268,6 +276,16 @@ impl Material {
     /// The roughness is anisotropic: the BSDF's shading frame must follow `∂p/∂u`.
     pub fn is_anisotropic(&self) -> bool {
         self.alpha_v.is_some_and(|v| v != self.alpha)
+    }
+
+    /// True for the kinds that scatter through the surface: the dielectrics, and a principled
+    /// BSDF that may transmit.
+    pub fn transmits(&self) -> bool {
+        match self.kind {
+            MaterialKind::Glass | MaterialKind::ThinGlass | MaterialKind::RoughGlass => true,
+            MaterialKind::Principled => self.principled.may_transmit(),
+            _ => false,
+        }
     }
 
     pub fn emits(&self) -> bool {

@@ -42,7 +42,13 @@
 //!   shading frame, as smooth glass;
 //! * `thindielectric`: reflection `R' = 2R/(1 + R)` (the sheet's inner reflections summed),
 //!   straight transmission `1 - R'` (`wi = -wo`), with `k_s` and `T_f` as factors and no
-//!   `1/η²` (the ray leaves into the medium it came from).
+//!   `1/η²` (the ray leaves into the medium it came from);
+//! * `principled`: the Disney BSDF (Burley 2012, 2015) as Mitsuba 3.9 evaluates and samples
+//!   it: anisotropic GGX reflection and refraction, a GTR1 clearcoat, a retro-reflective
+//!   diffuse lobe with sheen and fake subsurface ([`crate::bsdf::principled`]); reflection
+//!   only, from the front, unless it transmits (`spec_trans > 0`), then on both sides in
+//!   the shading frame, as the rough dielectric. Its anisotropic lobe's tangent is the
+//!   surface's `∂p/∂u`, as Mitsuba's shading frame.
 //!
 //! Sidedness: two-sided surfaces reflect on whichever side of the shading normal `wo` is (the
 //! frame is flipped to it, as Mitsuba's `twosided` flips where `cos θ_i < 0`); a one-sided
@@ -83,6 +89,7 @@ pub mod fresnel;
 mod lobes;
 pub mod material;
 pub mod microfacet;
+pub mod principled;
 pub mod rough_glass;
 pub mod rough_plastic;
 mod surface;

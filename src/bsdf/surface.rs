@@ -223,9 +223,10 @@ impl Bsdf {
         if self.is_delta_with::<F>() {
             return Rgb::ZERO;
         }
-        if let Lobes::RoughGlass(g) = &self.lobes {
+        if self.lobes.scatters_both_sides() {
             let (lo, li) = (self.frame.to_local(wo), self.frame.to_local(wi));
-            return g.eval(lo, li, mode) * self.adjoint_correction_with::<F>(wo, wi, mode);
+            return self.lobes.eval_both_sides(lo, li, mode)
+                * self.adjoint_correction_with::<F>(wo, wi, mode);
         }
         let f = match self.reflection_local(wo, wi) {
             Some((lo, li)) => self.lobes.eval_local(lo, li),
@@ -286,8 +287,10 @@ impl Bsdf {
         if self.is_delta_with::<F>() {
             return 0.0;
         }
-        if let Lobes::RoughGlass(g) = &self.lobes {
-            return g.pdf(self.frame.to_local(wo), self.frame.to_local(wi));
+        if self.lobes.scatters_both_sides() {
+            return self
+                .lobes
+                .pdf_both_sides(self.frame.to_local(wo), self.frame.to_local(wi));
         }
         match self.reflection_local(wo, wi) {
             Some((lo, li)) => self.lobes.pdf_local(lo, li),
@@ -421,10 +424,13 @@ impl Bsdf {
         u: Vec2,
         mode: TransportMode,
     ) -> Option<BsdfSample> {
-        if let Lobes::RoughGlass(g) = &self.lobes {
-            // Both sides in the shading frame, as Mitsuba's `roughdielectric` (its cos θ_i):
-            // no flip, and the direction stands on either side of the geometric normal.
-            let li = g.sample(self.frame.to_local(wo), u_lobe, u)?;
+        if self.lobes.scatters_both_sides() {
+            // Both sides in the shading frame, as Mitsuba's `roughdielectric` and
+            // `principled` (their cos θ_i): no flip, and the direction stands on either side
+            // of the geometric normal.
+            let li = self
+                .lobes
+                .sample_both_sides(self.frame.to_local(wo), u_lobe, u)?;
             return self.non_delta_sample(wo, self.frame.to_world(li), mode);
         }
         // The frame is flipped to wo's side for the transmitting kinds and for two-sided

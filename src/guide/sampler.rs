@@ -35,8 +35,8 @@ use glam::Vec3;
 pub const LUMINANCE: Rgb = Rgb::new(0.2126, 0.7152, 0.0722);
 
 /// True when particles are stored and guide at surfaces with these lobes: diffuse, and
-/// glossy up to the soft-glossy exponent (the rough conductor, rough plastic and rough
-/// dielectric by the Blinn exponent of about the same width); never mirrors, glass, smooth conductors or
+/// glossy up to the soft-glossy exponent (the rough conductor, rough plastic, rough
+/// dielectric and principled by the Blinn exponent of about the same width); never mirrors, glass, smooth conductors or
 /// plastics, thin glass or strongly glossy lobes (paper §3).
 pub fn guides_at(lobes: &Lobes, soft_glossy_max: f32) -> bool {
     match lobes {
@@ -47,6 +47,11 @@ pub fn guides_at(lobes: &Lobes, soft_glossy_max: f32) -> bool {
             distr.blinn_exponent() <= soft_glossy_max
         }
         Lobes::RoughGlass(g) => g.distr.blinn_exponent() <= soft_glossy_max,
+        // By the main lobe (reflection, metal and refraction alike; `α² = α_u α_v` when
+        // anisotropic, as for the other microfacet kinds). The clearcoat's sharp GTR1 lobe (α <= 0.1) is
+        // weak, `0.25 clearcoat` times a Fresnel term of 4% at normal incidence, and stays
+        // reachable by BSDF sampling in the guide's mixture.
+        Lobes::Principled(p) => p.distribution().blinn_exponent() <= soft_glossy_max,
         // Smooth plastic has a delta coat over its diffuse base.
         Lobes::Mirror { .. }
         | Lobes::Glass { .. }

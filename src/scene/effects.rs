@@ -2,6 +2,7 @@
 //! code paths for absent effects are skipped rather than run idle.
 
 use crate::bsdf::material::{Material, MaterialKind};
+use crate::bsdf::principled::Scalar;
 use crate::scene::geometry::TriangleShading;
 use crate::scene::light::Light;
 
@@ -91,6 +92,23 @@ impl Effects {
                     e.thin_glass = true;
                     let t = m.tf;
                     e.coloured_filtering |= t.max_element() - t.min_element() > 1e-4;
+                }
+                // The main lobe is glossy (reflection, and refraction where it transmits,
+                // tinted by the base colour's square root); the diffuse lobe is there unless
+                // the material is all metal or all transmission.
+                MaterialKind::Principled => {
+                    let p = &m.principled;
+                    let varies = |s: Scalar| s.texture.is_some();
+                    let base = m.kd_texture.is_some() || m.kd.max_element() > 0.0;
+                    e.glossy = true;
+                    e.diffuse |= base
+                        && (varies(p.metallic) || p.metallic.value < 1.0)
+                        && (varies(p.spec_trans) || p.spec_trans.value < 1.0);
+                    let transmits = varies(p.spec_trans) || p.spec_trans.value > 0.0;
+                    let c = m.kd;
+                    e.coloured_filtering |= transmits
+                        && (m.kd_texture.is_some() || c.max_element() - c.min_element() > 1e-4);
+                    e.textures |= p.textured();
                 }
             }
             e.masks |= m.is_masked();

@@ -23,7 +23,7 @@ use crate::bsdf::bump::{Bump, BumpMap, NormalSource, bumped_normal, mapped_norma
 use crate::bsdf::material::{Material, MaterialKind};
 use crate::bsdf::{Bsdf, Lobes, SurfaceLobes};
 use crate::features::{Features, General};
-use crate::math::{Frame, Rgb, luminance};
+use crate::math::{Frame, Rgb};
 use crate::sampling::Distribution1D;
 use crate::scene::accel::Accel;
 use crate::scene::camera::Camera;
@@ -391,9 +391,22 @@ impl Scene {
             return Bsdf::new(lobes, hit.ns, hit.facing_ng());
         }
         let mut bsdf = Bsdf::new(self.lobes_with::<F>(m, hit), hit.ns, hit.facing_ng());
+        if let Some(b) = &m.blend {
+            let weight = match b.weight_texture {
+                Some(t) if F::TEXTURES => b.weight * self.textures[t as usize].lookup_1(hit.uv),
+                _ => b.weight,
+            };
+            let other = self.lobes_with::<F>(&b.other, hit);
+            bsdf.blend = Some(Blend {
+                weight: weight.clamp(0.0, 1.0),
+                lobes: other.lobes,
+                two_sided: other.two_sided,
+            });
+        }
         // An anisotropic roughness is oriented by ∂p/∂u, as in Mitsuba (the isotropic lobes
-        // do not depend on the frame's tangent).
-        if m.components().any(Material::is_anisotropic) {
+        // do not depend on the frame's tangent): Mitsuba's shading frame, whose tangent is
+        // ∂p/∂u made orthogonal to the normal.
+        if bsdf.lobes.is_anisotropic() || bsdf.blend.is_some_and(|b| b.lobes.is_anisotropic()) {
             let (dp_du, _) = self.uv_partials_at(hit);
             if let Some(frame) = Frame::from_z_and_tangent(bsdf.frame.z, dp_du) {
                 bsdf.frame = frame;
@@ -403,20 +416,6 @@ impl Scene {
             && let Some(map) = &m.bump
         {
             bsdf.bump = self.bump_at(map, hit, &bsdf);
-        }
-        if let Some(b) = &m.blend {
-            let weight = match b.weight_texture {
-                Some(t) if F::TEXTURES => {
-                    b.weight * luminance(self.textures[t as usize].lookup(hit.uv))
-                }
-                _ => b.weight,
-            };
-            let other = self.lobes_with::<F>(&b.other, hit);
-            bsdf.blend = Some(Blend {
-                weight: weight.clamp(0.0, 1.0),
-                lobes: other.lobes,
-                two_sided: other.two_sided,
-            });
         }
         bsdf
     }
@@ -438,11 +437,16 @@ impl Scene {
             Some(t) => m.ks * self.textures[t as usize].lookup(hit.uv),
             None => m.ks,
         };
-        Lobes::new(m, kd, ks)
+        // Scalar parameters may be textures (the principled BSDF's), read as Mitsuba's
+        // `eval_1` reads them.
+        Lobes::new_at(m, kd, ks, |t| {
+            F::TEXTURES.then(|| self.textures[t as usize].lookup_1(hit.uv))
+        })
     }
 
     /// The opacity of the surface at `hit` (Mitsuba's `mask`: the material's constant times
-    /// its opacity texture's luminance, as Mitsuba's `eval_1`, clamped to [0, 1]): the
+    /// its opacity texture read as Mitsuba's `eval_1` reads it, [`Texture::lookup_1`],
+    /// clamped to [0, 1]): the
     /// probability that light arriving there scatters, `1 - opacity` that it passes straight
     /// through. 1 on every unmasked surface, and without masks in the scene.
     #[inline]
@@ -452,18 +456,14 @@ impl Scene {
         }
         let m = &self.materials[hit.material as usize];
         match m.opacity_texture {
-            Some(t) => {
-                (m.opacity * luminance(self.textures[t as usize].lookup(hit.uv))).clamp(0.0, 1.0)
-            }
+            Some(t) => (m.opacity * self.textures[t as usize].lookup_1(hit.uv)).clamp(0.0, 1.0),
             None => m.opacity,
         }
     }
 
     /// The bump of `map` at `hit` for the BSDF `bsdf` there ([`crate::bsdf::bump`]), from
-    /// the triangle's partials `∂p/∂u`, `∂p/∂v` in Mitsuba's texture coordinates (`(u, 1 - v)`
-    /// of the stored ones; the importer stores barycentric ones on a mesh without any, as
-    /// Mitsuba parametrises it) and the texture at the hit's coordinates: a height field's
-    /// gradient, or a normal map's colour. `None` where the gradient is zero (the shading
+    /// the triangle's partials ([`Scene::uv_partials_at`]) and the texture at the hit's
+    /// coordinates: a height field's gradient, or a normal map's colour. `None` where the gradient is zero (the shading
     /// frame stays exactly the surface's) or the parametrisation is degenerate (no normal to
     /// tilt to).
     fn bump_at(&self, map: &BumpMap, hit: &SurfaceHit, bsdf: &Bsdf) -> Option<Bump> {

@@ -9,6 +9,7 @@
 
 use crate::Rgb;
 use crate::error::{Error, Result};
+use crate::math::luminance_mitsuba;
 use glam::{Affine2, Vec2};
 use std::path::Path;
 
@@ -226,6 +227,22 @@ impl Texture {
         Some(df_st * Vec2::new(*width as f32, *height as f32))
     }
 
+    /// The scalar value at `uv` (`v` up) of a texture given for a scalar property, as
+    /// Mitsuba 3.9's `eval_1`: a bitmap's luminance ([`luminance_mitsuba`]; the grey value of a
+    /// grey one); for a checkerboard, `color1` where [`Texture::lookup`] (Mitsuba's `eval`)
+    /// gives `color0` and `color0` where it gives `color1`: Mitsuba's `eval_1` takes the
+    /// opposite cells (`src/textures/checkerboard.cpp`), and footprint renders what Mitsuba
+    /// renders.
+    pub fn lookup_1(&self, uv: Vec2) -> f32 {
+        match &self.kind {
+            TextureKind::Checkerboard { color0, color1 } => {
+                let cell0 = color0_cell(self.st(uv));
+                luminance_mitsuba(if cell0 { *color1 } else { *color0 })
+            }
+            TextureKind::Bitmap { .. } => luminance_mitsuba(self.lookup(uv)),
+        }
+    }
+
     /// Lookup at `uv` (`v` up, as stored on triangles); bilinear and wrapping for images.
     pub fn lookup(&self, uv: Vec2) -> Rgb {
         let st = self.st(uv);
@@ -261,12 +278,21 @@ impl Texture {
                 a.lerp(b, fy)
             }
             TextureKind::Checkerboard { color0, color1 } => {
-                let mx = st.x - st.x.floor() > 0.5;
-                let my = st.y - st.y.floor() > 0.5;
-                if mx == my { *color0 } else { *color1 }
+                if color0_cell(st) {
+                    *color0
+                } else {
+                    *color1
+                }
             }
         }
     }
+}
+
+/// True where a checkerboard's colour lookup (Mitsuba's `eval`) gives `color0` at texture
+/// coordinates `st`: the fractional parts of both on the same side of 1/2.
+#[inline]
+fn color0_cell(st: Vec2) -> bool {
+    (st.x - st.x.floor() > 0.5) == (st.y - st.y.floor() > 0.5)
 }
 
 #[cfg(test)]

@@ -1,6 +1,7 @@
 //! The configurations every generic BSDF test runs: diffuse, Blinn-Phong and the Mitsuba
 //! kinds, from several incident directions, flat and under tilted shading normals.
 
+use crate::principled::mitsuba_principled;
 use crate::{MI_ETA, MI_K, MI_KD, MI_KS, blend_of, dir, flat_bsdf, glossy, material};
 use footprint::Rgb;
 use footprint::bsdf::material::{Material, MaterialKind};
@@ -269,6 +270,91 @@ fn tilted_importance(name: &str, m: &Material) -> Config {
     }
 }
 
+/// The principled parameter sets (`scripts/mitsuba_bsdf_values.py principled`): those that
+/// reflect only from near-normal, oblique and grazing incidence, alternately one-sided seen
+/// from above and two-sided seen from below; the smooth one (roughness 0.05, α 0.0025) on a
+/// fine grid about the mirror direction; those that transmit entered from outside, left from
+/// inside and from beyond the critical angle, alternately in radiance and importance mode
+/// (the narrow glass, α 0.01, on fine grids about the reflection and the refraction); and
+/// a tilted shading normal in importance mode.
+pub fn principled_configs() -> Vec<Config> {
+    let mut v = Vec::new();
+    let mut i = 0;
+    for name in [
+        "default",
+        "dielectric_sheen",
+        "metallic_anisotropic",
+        "clearcoat",
+        "rough_sheen_flat",
+        "rates",
+    ] {
+        for (j, wo) in incident_dirs().into_iter().enumerate() {
+            let two_sided = i % 2 == 1;
+            i += 1;
+            let m = Material {
+                two_sided,
+                ..mitsuba_principled(name)
+            };
+            let bsdf = flat_bsdf(&m);
+            // A finer grid about the mirror direction where the main lobe is narrower than the
+            // sphere grid's cells (0.08 rad) can resolve: its masses would be off by percents.
+            let narrow =
+                matches!(bsdf.lobes, Lobes::Principled(p) if p.alpha_u.max(p.alpha_v) < 0.08);
+            v.push(Config {
+                name: format!("principled {name} wo#{j} two_sided={two_sided}"),
+                bsdf,
+                wo: if two_sided {
+                    Vec3::new(wo.x, wo.y, -wo.z)
+                } else {
+                    wo
+                },
+                mode: TransportMode::Radiance,
+                cap: narrow.then_some(0.5),
+                axis: None,
+            });
+        }
+    }
+    let smooth = mitsuba_principled("smooth");
+    let alpha = smooth.principled.roughness.value.powi(2) as f64;
+    for (j, wo) in [dir(20.0, 30.0), dir(70.0, 160.0)].into_iter().enumerate() {
+        v.push(Config {
+            name: format!("principled smooth wo#{j} (mirror cap)"),
+            bsdf: flat_bsdf(&smooth),
+            wo,
+            mode: TransportMode::Radiance,
+            cap: Some(12.0 * alpha),
+            axis: None,
+        });
+    }
+    for name in [
+        "spec_trans",
+        "glass",
+        "glass_rough_specular",
+        "spec_trans_anisotropic",
+    ] {
+        let m = mitsuba_principled(name);
+        let alpha = m.principled.roughness.value.powi(2) as f64;
+        let cap = (alpha <= 0.05).then_some(12.0 * alpha);
+        let name = format!("principled {name}");
+        v.extend(both_sides(
+            &name,
+            flat_bsdf(&m),
+            m.principled.eta,
+            cap,
+            &mut i,
+        ));
+    }
+    v.push(tilted_importance(
+        "principled spec_trans",
+        &mitsuba_principled("spec_trans"),
+    ));
+    v.push(tilted_importance(
+        "principled clearcoat",
+        &mitsuba_principled("clearcoat"),
+    ));
+    v
+}
+
 /// Relative index of the rough dielectric configurations (interior over exterior).
 pub const ROUGH_GLASS_ETA: f32 = 1.5;
 
@@ -298,58 +384,69 @@ pub fn smooth_directions(wo: Vec3, eta: f32) -> (Vec3, Option<Vec3>) {
     (mirror, refracted)
 }
 
-/// Rough dielectrics (GGX and Beckmann, α 0.01, 0.1, 0.5) entered from outside at 30°, left
-/// from inside at 20° and from beyond the smooth interface's critical angle (55° inside),
-/// alternately in radiance and importance mode; narrow lobes get two configurations, a fine
-/// grid about the mirror direction and one about the refraction (the other lobe falls in the
-/// harness's extra bin, with its probability as expectation). Also a tilted shading normal.
+/// The configurations of `bsdf`, which scatters to both sides: entered from outside at 30°,
+/// left from inside at 20° and from beyond the smooth interface's critical angle (55°
+/// inside), alternately in radiance and importance mode (`i` counts the configurations
+/// made). Narrow lobes (`cap`, about their angular size in radians) get two configurations,
+/// a fine grid about the mirror direction and one about the refraction through the interface
+/// of index `eta` (the other lobe falls in the harness's extra bin, with its probability as
+/// expectation); the others the whole sphere.
+fn both_sides(name: &str, bsdf: Bsdf, eta: f32, cap: Option<f64>, i: &mut usize) -> Vec<Config> {
+    let mut v = Vec::new();
+    for (side, wo) in [
+        ("entering", dir(30.0, 20.0)),
+        ("leaving", dir(160.0, 70.0)),
+        ("leaving beyond the critical angle", dir(125.0, 300.0)),
+    ] {
+        let mode = if i.is_multiple_of(2) {
+            TransportMode::Radiance
+        } else {
+            TransportMode::Importance
+        };
+        *i += 1;
+        let name = format!("{name} {side} {mode:?}");
+        let Some(cap) = cap else {
+            v.push(Config {
+                name,
+                bsdf,
+                wo,
+                mode,
+                cap: None,
+                axis: None,
+            });
+            continue;
+        };
+        let (mirror, refracted) = smooth_directions(wo, eta);
+        // Beyond the critical angle the refracted light leaves about the horizon.
+        let refracted = refracted.unwrap_or(Vec3::new(-wo.x, -wo.y, -wo.z).normalize());
+        for (lobe, axis) in [("reflection", mirror), ("refraction", refracted)] {
+            v.push(Config {
+                name: format!("{name} ({lobe} cap)"),
+                bsdf,
+                wo,
+                mode,
+                cap: Some(cap),
+                axis: Some(axis),
+            });
+        }
+    }
+    v
+}
+
+/// Rough dielectrics (GGX and Beckmann, α 0.01, 0.1, 0.5) from both sides
+/// ([`both_sides`]), and a tilted shading normal.
 pub fn rough_glass_configs() -> Vec<Config> {
     let mut v = Vec::new();
     let (ks, kt) = (Rgb::new(0.9, 0.8, 1.0), Rgb::new(0.7, 0.9, 0.8));
     let mut i = 0;
     for kind in [Microfacet::Ggx, Microfacet::Beckmann] {
         for alpha in [0.01f32, 0.1, 0.5] {
-            for (side, wo) in [
-                ("entering", dir(30.0, 20.0)),
-                ("leaving", dir(160.0, 70.0)),
-                ("leaving beyond the critical angle", dir(125.0, 300.0)),
-            ] {
-                let bsdf = flat_bsdf(&rough_glass(kind, alpha, ks, kt));
-                let mode = if i % 2 == 0 {
-                    TransportMode::Radiance
-                } else {
-                    TransportMode::Importance
-                };
-                i += 1;
-                let name = format!("roughdielectric {kind:?} α={alpha} {side} {mode:?}");
-                if alpha >= 0.5 {
-                    v.push(Config {
-                        name,
-                        bsdf,
-                        wo,
-                        mode,
-                        cap: None,
-                        axis: None,
-                    });
-                    continue;
-                }
-                let (mirror, refracted) = smooth_directions(wo, ROUGH_GLASS_ETA);
-                // Beyond the critical angle the refracted light leaves about the horizon.
-                let refracted = refracted.unwrap_or(Vec3::new(-wo.x, -wo.y, -wo.z).normalize());
-                // About the lobes' width: Beckmann's have no tails.
-                let widths = if kind == Microfacet::Ggx { 12.0 } else { 6.0 };
-                let cap = (widths * alpha as f64).min(1.2);
-                for (lobe, axis) in [("reflection", mirror), ("refraction", refracted)] {
-                    v.push(Config {
-                        name: format!("{name} ({lobe} cap)"),
-                        bsdf,
-                        wo,
-                        mode,
-                        cap: Some(cap),
-                        axis: Some(axis),
-                    });
-                }
-            }
+            let bsdf = flat_bsdf(&rough_glass(kind, alpha, ks, kt));
+            // About the lobes' width: Beckmann's have no tails.
+            let widths = if kind == Microfacet::Ggx { 12.0 } else { 6.0 };
+            let cap = (alpha < 0.5).then(|| (widths * alpha as f64).min(1.2));
+            let name = format!("roughdielectric {kind:?} α={alpha}");
+            v.extend(both_sides(&name, bsdf, ROUGH_GLASS_ETA, cap, &mut i));
         }
     }
     // Anisotropic rough dielectrics, entering and leaving, from azimuths off the axes.

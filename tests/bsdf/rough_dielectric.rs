@@ -5,7 +5,8 @@
 
 use crate::common::{mean_stderr, normal_quantile, sidak};
 use crate::configs::{ROUGH_GLASS_ETA, rough_glass, rough_glass_configs};
-use crate::{dir, flat_bsdf};
+use crate::reciprocity::check_adjoint_and_reciprocity;
+use crate::{MitsubaRow, check_mitsuba_row, dir, flat_bsdf};
 use footprint::Rgb;
 use footprint::bsdf::material::Material;
 use footprint::bsdf::microfacet::{Microfacet, MicrofacetDistribution, gauss_legendre_01};
@@ -40,14 +41,6 @@ fn mitsuba_rough_glass(name: &str) -> Bsdf {
     })
 }
 
-fn mode(importance: bool) -> TransportMode {
-    if importance {
-        TransportMode::Importance
-    } else {
-        TransportMode::Radiance
-    }
-}
-
 /// `eval` and `pdf` agree with Mitsuba 3's to 1e-3 on both sides, reflection and refraction,
 /// in both modes, about the lobes' peaks and in their tails; Beckmann densities to 4e-3
 /// (they use the exact Smith masking the sampler follows, Mitsuba the 0.35%-accurate rational
@@ -55,36 +48,14 @@ fn mode(importance: bool) -> TransportMode {
 #[test]
 fn rough_dielectric_matches_mitsuba_3() {
     let mut worst = (0.0f32, 0.0f32);
-    for &(name, importance, wo, wi, f_ref, pdf_ref) in MITSUBA_ROUGH_DIELECTRIC {
-        let b = mitsuba_rough_glass(name);
-        let (wo, wi) = (dir(wo[0], wo[1]), dir(wi[0], wi[1]));
-        let f = b.eval(wo, wi, mode(importance));
-        let pdf = b.pdf(wo, wi);
-        let f_ref = Rgb::from(f_ref);
-        let rel = |a: f32, b: f32| {
-            if a == b {
-                0.0
-            } else {
-                (a - b).abs() / b.abs().max(1e-30)
-            }
-        };
-        let f_err = (0..3).map(|c| rel(f[c], f_ref[c])).fold(0.0, f32::max);
-        let pdf_err = rel(pdf, pdf_ref);
-        worst = (worst.0.max(f_err), worst.1.max(pdf_err));
-        let pdf_tol = if name.contains("beckmann") {
+    for row in MITSUBA_ROUGH_DIELECTRIC {
+        let pdf_tol = if row.0.contains("beckmann") {
             4e-3
         } else {
             1e-3
         };
-        assert!(
-            f_err <= 1e-3,
-            "{name} {:?} {wo} {wi}: f {f} vs Mitsuba {f_ref}",
-            mode(importance)
-        );
-        assert!(
-            pdf_err <= pdf_tol,
-            "{name} {wo} {wi}: pdf {pdf} vs Mitsuba {pdf_ref}"
-        );
+        let (f_err, pdf_err) = check_mitsuba_row(&mitsuba_rough_glass(row.0), row, pdf_tol);
+        worst = (worst.0.max(f_err), worst.1.max(pdf_err));
     }
     eprintln!(
         "{} rows; largest relative difference: f {:.2e}, pdf {:.2e}",
@@ -102,48 +73,14 @@ fn rough_dielectric_matches_mitsuba_3() {
 /// that they lie where narrow lobes are non-zero.
 #[test]
 fn rough_dielectric_adjoint_and_reciprocity() {
-    let mut rng = Rng::new(31, 0, 0);
     let configs = rough_glass_configs();
-    let mut checked = 0;
-    for c in &configs {
-        let flat = c.bsdf.frame.z == c.bsdf.ng;
-        for _ in 0..2000 {
-            let wo = c.wo;
-            let Some(s) = c.bsdf.sample(wo, rng.uniform(), rng.uniform2(), c.mode) else {
-                continue;
-            };
-            let wi = s.wi;
-            let fi = c.bsdf.eval(wo, wi, TransportMode::Importance);
-            let fr_back = c.bsdf.eval(wi, wo, TransportMode::Radiance);
-            let (ns, ng) = (c.bsdf.frame.z, c.bsdf.ng);
-            let corr = wo.dot(ns).abs() * wi.dot(ng).abs() / (wo.dot(ng).abs() * wi.dot(ns).abs());
-            let expect = fr_back * corr;
-            let tol = 2e-3 * expect.max_element().max(fi.max_element()) + 1e-7;
-            assert!(
-                (fi - expect).abs().max_element() <= tol,
-                "{}: f*(wo, wi) {fi} != f(wi, wo) · correction {expect} (wo {wo}, wi {wi})",
-                c.name
-            );
-            if flat {
-                let index = |v: Vec3| {
-                    if v.dot(ns) > 0.0 {
-                        1.0
-                    } else {
-                        ROUGH_GLASS_ETA
-                    }
-                };
-                let fr = c.bsdf.eval(wo, wi, TransportMode::Radiance);
-                let a = fr / (index(wo) * index(wo));
-                let b = fr_back / (index(wi) * index(wi));
-                assert!(
-                    (a - b).abs().max_element() <= 2e-3 * a.max_element().max(b.max_element()),
-                    "{}: f(wo, wi)/η_o² {a} != f(wi, wo)/η_i² {b}",
-                    c.name
-                );
-            }
-            checked += 1;
+    let checked = check_adjoint_and_reciprocity(&configs, 31, |c, v| {
+        if v.dot(c.bsdf.frame.z) > 0.0 {
+            1.0
+        } else {
+            ROUGH_GLASS_ETA
         }
-    }
+    });
     assert!(checked > configs.len() * 1000, "only {checked} pairs");
 }
 
@@ -274,16 +211,12 @@ fn rough_dielectric_reads_its_side_from_the_shading_frame() {
     assert!(out > 0, "nothing refracted out through the shading frame");
 }
 
-/// A row of `MITSUBA_ROUGH_DIELECTRIC`: material, importance mode, `wo` and `wi` as (θ, φ) in
-/// degrees, `f`, pdf.
-type RoughDielectricRow = (&'static str, bool, [f32; 2], [f32; 2], [f32; 3], f32);
-
 // Generated by scripts/mitsuba_bsdf_values.py with Mitsuba 3.9.1 (variant scalar_rgb).
 // (name, importance mode, wo (theta, phi deg), wi (theta, phi deg), f = eval / |cos(wi)|,
 // pdf); int_ior 1.5, ext_ior 1, specular_reflectance and _transmittance as in the test.
 #[rustfmt::skip]
 #[allow(clippy::excessive_precision)]
-const MITSUBA_ROUGH_DIELECTRIC: &[RoughDielectricRow] = &[
+const MITSUBA_ROUGH_DIELECTRIC: &[MitsubaRow] = &[
     ("roughdielectric_ggx_a0.01", false, [5.0000, 20.0000], [5.0000, 200.0000], [2.8867840e+01, 2.5660303e+01, 3.2075379e+01], 3.1953331e+01),
     ("roughdielectric_ggx_a0.01", true, [5.0000, 20.0000], [5.0000, 200.0000], [2.8867840e+01, 2.5660303e+01, 3.2075379e+01], 3.1953331e+01),
     ("roughdielectric_ggx_a0.01", false, [5.0000, 20.0000], [5.1960, 200.5384], [2.7165829e+01, 2.4147406e+01, 3.0184256e+01], 3.0060228e+01),

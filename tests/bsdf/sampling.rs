@@ -3,22 +3,27 @@
 
 use crate::common::chi2::ChiSquareTest;
 use crate::common::sidak;
-use crate::configs::{configs, rough_glass_configs};
+use crate::configs::{configs, principled_configs, rough_glass_configs};
 use crate::{dir, material};
 use footprint::Rgb;
 use footprint::bsdf::material::{Material, MaterialKind};
 use footprint::bsdf::microfacet::Microfacet;
+use footprint::bsdf::principled::{PrincipledParams, SamplingRates, Scalar};
 use footprint::bsdf::{Bsdf, Lobes, TransportMode};
 use footprint::rng::Rng;
 use footprint::sampling::sample_uniform_sphere;
 use glam::Vec3;
 
-/// Every configuration, the rough dielectric's too: one test at 1% Šidák-corrected over all
-/// of them (fixed seed), so a sampler that matches its pdf fails the whole test with
-/// probability 1%.
+/// Every configuration, the rough dielectric's and the principled BSDF's too: one test at 1%
+/// Šidák-corrected over all of them (fixed seed), so a sampler that matches its pdf fails
+/// the whole test with probability 1%.
 #[test]
 fn sampling_matches_pdf_chi_square() {
-    let configs: Vec<_> = configs().into_iter().chain(rough_glass_configs()).collect();
+    let configs: Vec<_> = configs()
+        .into_iter()
+        .chain(rough_glass_configs())
+        .chain(principled_configs())
+        .collect();
     let alpha = sidak(0.01, configs.len());
     for c in &configs {
         let test = match c.cap {
@@ -66,7 +71,11 @@ fn sampling_matches_pdf_chi_square() {
 #[test]
 fn sample_reports_the_pdf_and_weight_of_its_direction() {
     let mut rng = Rng::new(5, 0, 0);
-    for c in configs().into_iter().chain(rough_glass_configs()) {
+    for c in configs()
+        .into_iter()
+        .chain(rough_glass_configs())
+        .chain(principled_configs())
+    {
         for _ in 0..20_000 {
             let Some(s) = c.bsdf.sample(c.wo, rng.uniform(), rng.uniform2(), c.mode) else {
                 continue;
@@ -114,6 +123,7 @@ fn random_configurations_are_finite_and_consistent() {
         MaterialKind::RoughPlastic,
         MaterialKind::ThinGlass,
         MaterialKind::RoughGlass,
+        MaterialKind::Principled,
     ];
     // Rough plastic tables are computed per (distribution, α, η): a few of them.
     let plastic_alphas = [1e-3f32, 0.05, 0.3, 1.0];
@@ -149,6 +159,7 @@ fn random_configurations_are_finite_and_consistent() {
             tf: rgb(&mut rng),
             nonlinear: rng.uniform() < 0.5,
             two_sided: rng.uniform() < 0.5,
+            principled: random_principled(&mut rng, i),
             ..material(kind)
         };
         let ns = dir(30.0 * rng.uniform(), 360.0 * rng.uniform());
@@ -206,4 +217,37 @@ fn random_configurations_are_finite_and_consistent() {
         }
     }
     assert!(samples > 50_000, "only {samples} samples succeeded");
+}
+
+/// Random principled parameters: roughness at its ends (0, where α is clamped to 0.001, and
+/// 1) a third of the time each, half of them transmitting, any sampling rates (0 included).
+fn random_principled(rng: &mut Rng, i: usize) -> PrincipledParams {
+    let mut u = || Scalar::constant(rng.uniform());
+    let mut p = PrincipledParams {
+        roughness: u(),
+        anisotropic: u(),
+        metallic: u(),
+        spec_trans: u(),
+        spec_tint: u(),
+        sheen: u(),
+        sheen_tint: u(),
+        flatness: u(),
+        clearcoat: u(),
+        clearcoat_gloss: u(),
+        eta: 1.01 + 2.0 * u().value,
+        rates: SamplingRates {
+            diffuse: 2.0 * u().value,
+            specular: 2.0 * u().value,
+            clearcoat: 2.0 * u().value,
+        },
+    };
+    match (i / 7) % 3 {
+        0 => p.roughness.value = 0.0,
+        1 => p.roughness.value = 1.0,
+        _ => {}
+    }
+    if rng.uniform() < 0.5 {
+        p.spec_trans.value = 0.0;
+    }
+    p
 }

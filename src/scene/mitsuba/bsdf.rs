@@ -37,7 +37,7 @@ const NAMED_IOR: &[(&str, f32)] = &[
     ("diamond", 2.419),
 ];
 
-const BSDFS: &str = "diffuse, twosided, mask, blendbsdf, bumpmap, normalmap, dielectric, thindielectric, roughdielectric, conductor, roughconductor, plastic, roughplastic";
+const BSDFS: &str = "diffuse, twosided, mask, blendbsdf, bumpmap, normalmap, dielectric, thindielectric, roughdielectric, conductor, roughconductor, plastic, roughplastic, principled";
 
 impl<'a, 'd> Builder<'a, 'd> {
     fn ior(&self, p: &Props<'a, 'd>, name: &str, default: f32) -> Result<f32> {
@@ -209,9 +209,20 @@ impl<'a, 'd> Builder<'a, 'd> {
                     .into_iter()
                     .filter(|n| n.has_tag_name("bsdf"))
                     .collect();
+                let transmits = |m: &Material| {
+                    m.kind == MaterialKind::Principled && m.principled.may_transmit()
+                };
                 match inner.as_slice() {
                     [b] => {
                         let mut im = self.bsdf(*b)?;
+                        if transmits(&im) {
+                            // Mitsuba: "Only materials without a transmission component can
+                            // be nested!"
+                            return Err(self.doc.err(
+                                node,
+                                "twosided cannot hold a principled BSDF with 'spec_trans' (it transmits), as in Mitsuba",
+                            ));
+                        }
                         im.two_sided = true;
                         if let Some(blend) = im.blend.as_mut() {
                             blend.other.two_sided = true;
@@ -313,6 +324,7 @@ impl<'a, 'd> Builder<'a, 'd> {
                     (m.microfacet, m.alpha, m.alpha_v) = self.microfacet(&p, node, true)?;
                 }
             }
+            "principled" => self.principled(&p, node, &mut m)?,
             "plastic" | "roughplastic" => {
                 let int = self.ior(&p, "int_ior", 1.49)?;
                 let ext = self.ior(&p, "ext_ior", 1.000277)?;
@@ -366,10 +378,7 @@ impl<'a, 'd> Builder<'a, 'd> {
         let weight = crate::math::luminance(colour).clamp(0.0, 1.0);
         let (mut a, mut b) = (self.bsdf(*first)?, self.bsdf(*second)?);
         for (c, n) in [(&mut a, *first), (&mut b, *second)] {
-            if matches!(
-                c.kind,
-                MaterialKind::Glass | MaterialKind::ThinGlass | MaterialKind::RoughGlass
-            ) {
+            if c.transmits() {
                 return Err(self.doc.err(
                     n,
                     "a dielectric in a blendbsdf is not supported (blends of reflecting BSDFs are)",
@@ -431,10 +440,7 @@ impl<'a, 'd> Builder<'a, 'd> {
                 .doc
                 .err(n, format!("opacity must be in [0, 1], got {opacity}")));
         }
-        if matches!(
-            m.kind,
-            MaterialKind::Glass | MaterialKind::ThinGlass | MaterialKind::RoughGlass
-        ) {
+        if m.transmits() {
             self.doc.unsupported(
                 node,
                 "a mask around a dielectric",

@@ -95,9 +95,18 @@ impl<'a, 'd> Builder<'a, 'd> {
         let shadowing = p.boolean("use_shadowing_function")?.unwrap_or(true);
         let mut m = self.bsdf(nested)?;
         let transmits = matches!(m.kind, MaterialKind::Glass | MaterialKind::ThinGlass);
-        if transmits || m.bump.is_some() {
+        let principled = m.kind == MaterialKind::Principled;
+        let principled_transmits = principled && m.principled.may_transmit();
+        // The bumped frame has no tangent of its own here: an anisotropic lobe would lose
+        // its orientation.
+        let principled_anisotropic = principled && m.principled.may_be_anisotropic();
+        if transmits || principled_transmits || principled_anisotropic || m.bump.is_some() {
             let what = if transmits {
                 format!("a dielectric inside a {plugin}")
+            } else if principled_transmits {
+                format!("a principled BSDF with 'spec_trans' inside a {plugin}")
+            } else if principled_anisotropic {
+                format!("an anisotropic principled BSDF inside a {plugin}")
             } else {
                 format!("a {plugin} inside a bumpmap or normalmap")
             };

@@ -545,6 +545,32 @@ fn kind_xml(
                 rgb("specular_transmittance", m.tf.map(f32::sqrt))
             )));
         }
+        MaterialKind::Principled => {
+            let pr = &m.principled;
+            let mut props = colour_or_texture(scene, "base_color", m.kd, m.kd_texture, tf, out)?;
+            for (name, s) in pr.scalars() {
+                props += &match s.texture {
+                    Some(t) => colour_or_texture(scene, name, Rgb::ONE, Some(t), tf, out)?,
+                    None => format!("<float name=\"{name}\" value=\"{:?}\"/>", s.value),
+                };
+            }
+            let r = pr.rates;
+            for (name, v) in [
+                ("eta", pr.eta),
+                ("diffuse_reflectance_sampling_rate", r.diffuse),
+                ("main_specular_sampling_rate", r.specular),
+                ("clearcoat_sampling_rate", r.clearcoat),
+            ] {
+                let _ = write!(props, "<float name=\"{name}\" value=\"{v:?}\"/>");
+            }
+            let xml = format!("<bsdf type=\"principled\">{props}</bsdf>");
+            if pr.may_transmit() {
+                // Scatters on both sides by itself: never wrapped in `twosided` (Mitsuba
+                // refuses a transmitting BSDF there).
+                return Ok(Kind::Transmitting(xml));
+            }
+            xml
+        }
         MaterialKind::Glass | MaterialKind::ThinGlass => {
             // footprint's `tf` is per passage through a solid (two interfaces) for glass.
             let st = if m.kind == MaterialKind::Glass {

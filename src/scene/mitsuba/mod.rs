@@ -8,7 +8,7 @@
 //! (and `ptracer`) integrator's `max_depth`; shapes `obj`, `ply`, `serialized`, `rectangle`,
 //! `cube`, `disk`, `sphere`, `cylinder`; BSDFs `diffuse`, `twosided`, `bumpmap`, `dielectric`,
 //! `thindielectric`, `roughdielectric`, `conductor`, `roughconductor`, `plastic`,
-//! `roughplastic`; textures `bitmap` (also `raw`) and `checkerboard` (with `to_uv`); emitters
+//! `roughplastic`, `principled`; textures `bitmap` (also `raw`) and `checkerboard` (with `to_uv`); emitters
 //! `area`, `point`, `spot`, `constant`, `directional`, `envmap`. Anything else stops the
 //! import with an error naming the element, its line and what is supported, unless
 //! `--lenient`, which replaces it with the stand-in the error names and lists every
@@ -16,7 +16,7 @@
 //!
 //! The import reads the document in `import.rs`, into a builder (`builder.rs`) that each
 //! element's file extends: `integrator.rs`, `sensor.rs` (with the film, sampler and pixel
-//! filter), `texture.rs`, `bsdf.rs` (with `bumpmap.rs`), `shape.rs` (the meshes of
+//! filter), `texture.rs`, `bsdf.rs` (with `bumpmap.rs` and `principled.rs`), `shape.rs` (the meshes of
 //! `meshes.rs`, `ply.rs` and `serialized.rs`) and `emitter.rs`. `xml.rs` holds the typed
 //! property lookup, `prefetch.rs` loads the files ahead, and `export.rs` writes a scene back
 //! out as Mitsuba 3 XML.
@@ -32,6 +32,7 @@ mod integrator;
 mod meshes;
 mod ply;
 mod prefetch;
+mod principled;
 mod sensor;
 mod serialized;
 mod shape;

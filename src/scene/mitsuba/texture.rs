@@ -12,6 +12,28 @@ use roxmltree::Node;
 const TEXTURES: &str = "bitmap, checkerboard";
 
 impl<'a, 'd> Builder<'a, 'd> {
+    /// The texture of property `name` when it is one (a `<texture>` or a `<ref>` to one):
+    /// `Some` of its index (`None` inside with `--lenient` for an unsupported type); an error
+    /// saying the property must be `kinds` when it refers to anything else.
+    pub(super) fn property_texture(
+        &mut self,
+        p: &Props<'a, 'd>,
+        name: &str,
+        kinds: &str,
+    ) -> Result<Option<Option<u32>>> {
+        if !p.is_texture(name) {
+            return Ok(None);
+        }
+        let n = p.get(name).unwrap();
+        let t = self.deref(n)?;
+        if t.tag_name().name() != "texture" {
+            return Err(self
+                .doc
+                .err(n, format!("'{name}' must be {kinds} or a <texture>")));
+        }
+        self.texture(t).map(Some)
+    }
+
     /// A colour property that may be a texture: the constant factor and the texture index.
     pub(super) fn color_or_texture(
         &mut self,
@@ -19,15 +41,7 @@ impl<'a, 'd> Builder<'a, 'd> {
         name: &str,
         default: Rgb,
     ) -> Result<(Rgb, Option<u32>)> {
-        if p.is_texture(name) {
-            let n = p.get(name).unwrap();
-            let t = self.deref(n)?;
-            if t.tag_name().name() != "texture" {
-                return Err(self
-                    .doc
-                    .err(n, format!("'{name}' must be a colour or a <texture>")));
-            }
-            let id = self.texture(t)?;
+        if let Some(id) = self.property_texture(p, name, "a colour")? {
             return Ok((Rgb::ONE, id));
         }
         Ok(match p.rgb(name)? {
