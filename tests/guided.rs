@@ -1,8 +1,9 @@
 //! Guided integrators: every integrator x guide pair converges to the same image, stays
 //! numerically stable on hard scenes, and is reproducible whatever the thread count.
 //!
-//! Agreement: each pair renders `R` independent images (different seeds, maps rebuilt from
-//! each seed) at low resolution; so does an unguided path-traced reference. Per region and
+//! Agreement: each pair renders `R` images (different seeds, given one set of maps built per
+//! pair: a guided estimate is unbiased given any maps) at low resolution; so does an
+//! unguided path-traced reference. Per region and
 //! channel, the difference of the two means is compared with its standard error from the
 //! replicates' spread (Welch), against Student's t with `R - 1` degrees of freedom at
 //! significance 0.01, Šidák-corrected over every pair x region x channel of the scene.
@@ -13,7 +14,9 @@ use common::{PAIRS, mean_stderr, scene_path, sidak, t_critical};
 use footprint::scene::Scene;
 use footprint::scene::load::load_scene;
 use footprint::settings::GuideParams;
+use footprint_integrators::render::{guidance, render_guided};
 use footprint_integrators::{Method, RenderOptions, render};
+use std::time::Instant;
 
 fn small(name: &str, w: u32, h: u32, particles: usize) -> Scene {
     let mut s = load_scene(&scene_path(name)).unwrap();
@@ -59,14 +62,19 @@ fn agreement(
     methods: &[&str],
     params: &GuideParams,
 ) {
+    // The maps and caches are built once per method (from the first replicate's seed) and
+    // shared by its replicates: a guided estimate is unbiased given any maps, so the
+    // replicates' mean must match the reference given these ones.
     let replicate = |m: &str, seed: u64| -> Vec<Vec<[f64; 3]>> {
+        let with_seed = |seed: u64| RenderOptions {
+            guide_params: params.clone(),
+            ..opts(m, spp, max_depth, seed)
+        };
+        let maps = guidance(scene, &with_seed(seed), &|| None);
         (0..renders)
             .map(|r| {
-                let o = RenderOptions {
-                    guide_params: params.clone(),
-                    ..opts(m, spp, max_depth, seed + r as u64)
-                };
-                let out = render(scene, &o, |_| {});
+                let o = with_seed(seed + r as u64);
+                let out = render_guided(scene, &o, &maps, Instant::now(), |_| {});
                 assert!(out.image.all_valid(), "{m}: invalid pixel");
                 common::region_means(&out.image, side)
             })

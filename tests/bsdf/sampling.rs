@@ -13,6 +13,7 @@ use footprint::bsdf::{Bsdf, Lobes, TransportMode};
 use footprint::rng::Rng;
 use footprint::sampling::sample_uniform_sphere;
 use glam::Vec3;
+use rayon::prelude::*;
 
 /// Every configuration, the rough dielectric's and the principled BSDF's too: one test at 1%
 /// Šidák-corrected over all of them (fixed seed), so a sampler that matches its pdf fails
@@ -25,7 +26,8 @@ fn sampling_matches_pdf_chi_square() {
         .chain(principled_configs())
         .collect();
     let alpha = sidak(0.01, configs.len());
-    for c in &configs {
+    // Each configuration's test is independent (its own fixed seed): run them on every core.
+    configs.par_iter().for_each(|c| {
         let test = match c.cap {
             None => ChiSquareTest::sphere(1_000_000),
             Some(theta_max) => {
@@ -65,7 +67,7 @@ fn sampling_matches_pdf_chi_square() {
             c.name,
             r.p_value
         );
-    }
+    });
 }
 
 #[test]
