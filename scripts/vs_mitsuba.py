@@ -338,6 +338,9 @@ TABLE = [
     ("Modern Hall 128x72", os.path.join(ROOT, "scenes", "public", "fetched", "modern-hall", "scene.xml"), dict(resx=128, resy=72)),
     ("matpreview 128x96", os.path.join(ROOT, "scenes", "public", "fetched", "matpreview", "scene.xml"), dict(width=128, height=96)),
     ("dining room 96x96", os.path.join(ROOT, "scenes", "public", "fetched", "dining-room", "scene.xml"), dict(resx=96, resy=96)),
+    # Cut-out leaves: Mitsuba's `volpath` (its `path` loses light seen through them).
+    ("living room 128x72", os.path.join(ROOT, "scenes", "public", "fetched", "living-room", "scene.xml"),
+     dict(resx=128, resy=72, integrator="volpath")),
     ("cornell (bundled) 128x128", os.path.join(ROOT, "scenes", "cornell", "mitsuba", "scene.xml"), dict(resx=128, resy=128)),
     ("door (bundled) 128x128", os.path.join(ROOT, "scenes", "door", "mitsuba", "scene.xml"), dict(resx=128, resy=128)),
     ("desk (bundled) 128x128", os.path.join(ROOT, "scenes", "desk", "mitsuba", "scene.xml"), dict(resx=128, resy=128)),
