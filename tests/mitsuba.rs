@@ -490,6 +490,27 @@ fn rough_glass_balls_match_mitsuba() {
     check(&ROUGH_GLASS, "pt-bsdf", FilmMode::Splat);
 }
 
+/// `scenes/slit`: a closed room lit only through a narrow slit from a bright room behind it
+/// (the light reaches the camera's room after a bounce in the lit one). Guided path tracing
+/// against Mitsuba's `path`: the scene the guiding measurements call hard, checked against
+/// the world with the method that renders it (its unguided replicates are heavy-tailed at
+/// any sample count a test affords).
+const SLIT: Case = Case {
+    name: "slit",
+    res: (64, 48),
+    rfilter: "box",
+    max_depth: 10,
+    replicates: 16,
+    spp: 64,
+    sheets_connect: false,
+    source: Source::Bundled,
+};
+
+#[test]
+fn slit_room_matches_mitsuba() {
+    check(&SLIT, "pt-footprint", FilmMode::Splat);
+}
+
 /// `scenes/cutout`: cut-outs (`mask`) of a bitmap's and of a constant opacity, against
 /// Mitsuba's `volpath`, which passes them as footprint does: without a vertex, with light
 /// samples through them (its `path` loses part of the light seen through a cut-out: MIS
