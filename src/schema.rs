@@ -243,7 +243,7 @@ pub const SETTINGS: &[Setting] = &[
         "importons",
         Count,
         Always,
-        "Importon paths shot by the view pass",
+        "Importon paths shot by the view pass (the first quarter of them seed the photon map's cache; path tracing shoots only those)",
     ),
     s(
         Maps,

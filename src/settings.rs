@@ -136,7 +136,8 @@ pub const MAX_MAP_PATHS: usize = 50_000_000;
 pub struct MapSettings {
     /// Photon paths shot by the light pass.
     pub photons: usize,
-    /// Importon paths shot by the view pass.
+    /// Importon paths shot by the view pass (the first quarter of them seed the photon map's
+    /// cache, and path tracing shoots only those: `footprint_integrators::maps::seed_paths`).
     pub importons: usize,
     /// Maximum distance of a particle from a query point; `None`: 5% of the scene's
     /// bounding-box diagonal.

@@ -1,7 +1,8 @@
 //! Particle maps: the k-nearest query against brute force (exclusion rules included), the
 //! memory per particle, flux conservation of the light pass, photon and importon density
 //! estimates against independent estimates, colour-filtered importance behind glass, spot
-//! emission sampling, bad map settings, and the pictures of `footprint maps`.
+//! emission sampling, bad map settings, the photon cache's seeds, and the pictures of
+//! `footprint maps`.
 //!
 //! The parts live in `tests/maps/`; this root holds what they share.
 
@@ -17,6 +18,8 @@ mod flux;
 mod growth;
 #[path = "maps/query.rs"]
 mod query;
+#[path = "maps/seeds.rs"]
+mod seeds;
 
 use footprint::Rgb;
 use footprint::guide::particle_map::ParticleInput;

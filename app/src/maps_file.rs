@@ -6,7 +6,7 @@
 //! a second or two (the cache builds dominate), so a render with loaded maps is the same
 //! image as one that ran the passes itself.
 //!
-//! Format version 1, little-endian:
+//! Format version 3, little-endian:
 //!
 //! | bytes | what |
 //! |---|---|
@@ -19,12 +19,13 @@
 //! The key says what the passes depend on ([`maps_key`]): the scene's content hash
 //! ([`crate::scene_hash`]), the resolution, the maximum depth, the seed and the settings
 //! that shape the passes. A pass is a presence byte, then its
-//! statistics (paths u64, emitted 3 x f32, escaped count u32 + 3 x f32 each, seconds f64),
+//! statistics (paths u64, emitted 3 x f32, escaped count u32 + 3 x f32 each, seconds f64,
+//! the particles of the paths that seed the photon map's cache u64, `u64::MAX` for all),
 //! its particles (count u64; position, direction, normal, weight as 3 x f32 each, depth
 //! u16, specular chain u8) and its emission points (count u64; position, normal 3 x f32).
 //! Positions are the scene's own ([`Scene::origin`]: a scene far from the origin of its file
 //! is centred when loaded), which its content hash fixes; version 1 wrote a far scene's
-//! positions in its file's coordinates.
+//! positions in its file's coordinates, version 2 had no seeding count.
 
 use anyhow::{Result, bail};
 use footprint::Rgb;
@@ -39,7 +40,7 @@ use std::path::Path;
 use std::time::Duration;
 
 pub const MAGIC: &[u8; 8] = b"FPMAPS\r\n";
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
 const HEADER: usize = 8 + 4 + 8 + 32;
 
 /// What the passes depend on, as `name=value` words; a file is used only for a render whose
@@ -211,6 +212,8 @@ fn put_pass(p: &mut Vec<u8>, out: &PassOutput) {
         put_f32s(p, &e.to_array());
     }
     p.extend_from_slice(&s.time.as_secs_f64().to_le_bytes());
+    let seeding = s.seed_particles.map_or(u64::MAX, |n| n as u64);
+    p.extend_from_slice(&seeding.to_le_bytes());
     p.extend_from_slice(&(out.particles.len() as u64).to_le_bytes());
     p.reserve(out.particles.len() * 51);
     for q in &out.particles {
@@ -275,6 +278,10 @@ impl<'a> Reader<'a> {
         let escaped = (0..n).map(|_| self.vec3()).collect::<Option<Vec<_>>>()?;
         let time =
             Duration::try_from_secs_f64(f64::from_le_bytes(self.take(8)?.try_into().ok()?)).ok()?;
+        let seed_particles = match self.u64()? {
+            u64::MAX => None,
+            n => Some(usize::try_from(n).ok()?),
+        };
         let n = self.count(51)?;
         let mut particles = Vec::with_capacity(n);
         for _ in 0..n {
@@ -306,6 +313,7 @@ impl<'a> Reader<'a> {
                 escaped,
                 time,
                 particles_drawn,
+                seed_particles: seed_particles.filter(|&n| n <= particles_drawn),
                 ..Default::default()
             },
         })

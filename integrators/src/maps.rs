@@ -7,7 +7,7 @@
 //! run whenever a cache is built.
 
 use crate::method::Method;
-use crate::passes::{PassOutput, PassSettings, grow_light_pass, light_pass, view_pass};
+use crate::passes::{PassOutput, PassSettings, grow_light_pass, light_pass, view_pass_seeding};
 use crate::skips::Skip;
 use footprint::guide::cache::{CacheStats, GuideCache, Seed};
 use footprint::guide::particle_map::{MapKind, ParticleInput, ParticleMap};
@@ -128,9 +128,36 @@ pub fn needed_passes(method: &Method, params: &GuideParams) -> (bool, bool) {
     )
 }
 
-/// Runs the passes `method` needs (with `scene.maps`' path counts), in `scene.maps.rounds`
-/// rounds that refine each other (see `MapSettings::rounds`; docs/method.md, "Maps that
-/// refine each other").
+/// The share of a view pass's paths whose particles seed the photon map's cache, and the
+/// share path tracing's view pass shoots (its importons serve only as those seeds). Seeds
+/// only say where regions are: a region is at most the query distance wide and holds at
+/// most `region_seeds`, so a quarter of the seeds gives nearly as many regions (Bitterli's
+/// Cornell box, 64x64: 2711 regions against 3012) and the same error per sample, for a
+/// quarter of the pass's time (docs/measurements/guided-vs-bsdf.md, "Seed passes"). Every
+/// method's photon cache reads the same first paths' particles
+/// (`PassOutput::photon_cache_seeds`), so path tracing builds the cache the combined image
+/// and `auto`'s pilot build. Light tracing's light pass, the importance map's seeds, keeps
+/// its paths: photons are sparse where light arrives through a narrow way, and door
+/// measures worse with a quarter of them.
+pub const SEED_PASS_SHARE: f64 = 0.25;
+
+/// The first paths of a view pass of `paths` paths whose particles seed the photon map's
+/// cache ([`SEED_PASS_SHARE`]).
+pub fn seed_paths(paths: usize) -> usize {
+    ((paths as f64 * SEED_PASS_SHARE) as usize).clamp(1, paths.max(1))
+}
+
+/// Whether `method`'s view pass only seeds the photon map's cache (it reads the photon map
+/// and not the importance map): it then shoots [`seed_paths`] of its paths.
+pub fn view_pass_seeds_only(method: &Method) -> bool {
+    let paths = method.integrator.paths();
+    paths.camera && !paths.light
+}
+
+/// Runs the passes `method` needs (with `scene.maps`' path counts; a view pass that only
+/// seeds the photon map's cache with [`seed_paths`] of them), in `scene.maps.rounds` rounds
+/// that refine each other (see `MapSettings::rounds`; docs/method.md, "Maps that refine each
+/// other"; the rounds before the last build both maps and shoot every pass's full count).
 pub fn run_passes(
     scene: &Scene,
     method: &Method,
@@ -138,6 +165,7 @@ pub fn run_passes(
     pass: &PassSettings,
 ) -> Passes {
     let (need_light, need_view) = needed_passes(method, params);
+    let seeds_only_view = view_pass_seeds_only(method);
     let rounds = if need_light || need_view {
         scene.maps.rounds.max(1)
     } else {
@@ -185,12 +213,19 @@ pub fn run_passes(
             light_pass(scene, &s, if r == 0 { &bsdf } else { &light_sampler })
         });
         let view = (need_view || !last).then(|| {
+            let all = count(scene.maps.importons);
+            let seeding = seed_paths(all);
             let s = PassSettings {
-                paths: count(scene.maps.importons),
+                paths: if last && seeds_only_view {
+                    seeding
+                } else {
+                    all
+                },
                 seed,
                 ..pass.clone()
             };
-            view_pass(scene, &s, if r == 0 { &bsdf } else { &view_sampler })
+            let sampler = if r == 0 { &bsdf } else { &view_sampler };
+            view_pass_seeding(scene, &s, sampler, seeding)
         });
         let round = Passes {
             light_time: light.as_ref().map(|p| p.stats.time).unwrap_or_default(),
@@ -357,7 +392,7 @@ impl Guidance {
             .integrator
             .paths()
             .camera
-            .then(|| passes.view.as_ref().map(|v| v.seeds()))
+            .then(|| passes.view.as_ref().map(|v| v.photon_cache_seeds()))
             .flatten();
         let copying = copy_start.elapsed();
         let mut first = Self::from_passes(scene, method, params, passes, heap);
@@ -412,7 +447,7 @@ impl Guidance {
             return self;
         }
         // Without `seeds`, the view pass's points come from the importance map held.
-        let seeds = seeds.or_else(|| self.importons.as_ref().map(|m| m.pass.seeds()));
+        let seeds = seeds.or_else(|| self.importons.as_ref().map(|m| m.pass.photon_cache_seeds()));
         let light = self.photons.take().expect("checked above").pass;
         self.photon_cache = None;
         let s = PassSettings {
@@ -480,7 +515,7 @@ impl Guidance {
         let cache = params.cache;
         // Seeds of each cache: the other pass's scattering points.
         let photon_seeds = (cache && photon_map)
-            .then(|| view.as_ref().map(|v| v.seeds()))
+            .then(|| view.as_ref().map(|v| v.photon_cache_seeds()))
             .flatten();
         let importon_seeds = (cache && importance_map)
             .then(|| light.as_ref().map(|l| l.seeds()))

@@ -71,6 +71,7 @@ fn light_paths(
             time: start.elapsed(),
             particles_drawn: all.drawn,
             thinning: all.thinning,
+            seed_particles: None,
         },
     }
 }

@@ -39,4 +39,4 @@ mod view_pass;
 pub use light_pass::{grow_light_pass, light_pass};
 pub use pass::{PassOutput, PassSettings, PassStats};
 pub use target::ImportanceTarget;
-pub use view_pass::view_pass;
+pub use view_pass::{view_pass, view_pass_seeding};

@@ -61,6 +61,9 @@ pub struct PassStats {
     /// The thinning level: the pass kept a share `2^-thinning` of its particles
     /// ([`crate::passes::thinning`]); 0 kept all.
     pub thinning: u32,
+    /// View pass: how many of its first particles the first [`crate::maps::seed_paths`]
+    /// paths stored, the photon map's cache seeds (`None`: all of them; a thinned pass's).
+    pub seed_particles: Option<usize>,
 }
 
 #[derive(Clone)]
@@ -75,7 +78,19 @@ impl PassOutput {
     /// Where this pass's paths asked for a direction at guiding surfaces: the seeds of the
     /// other map's guide cache.
     pub fn seeds(&self) -> Vec<Seed> {
-        self.particles
+        self.seeds_of(self.particles.len())
+    }
+
+    /// The seeds of the photon map's cache from a view pass: the points of its first
+    /// [`crate::maps::seed_paths`] paths ([`PassStats::seed_particles`]), the same whether
+    /// the pass shot only those (path tracing) or more (the combined image, `auto`'s pilot).
+    pub fn photon_cache_seeds(&self) -> Vec<Seed> {
+        self.seeds_of(self.stats.seed_particles.unwrap_or(self.particles.len()))
+    }
+
+    /// The points of the first `n` particles, and the emission points.
+    fn seeds_of(&self, n: usize) -> Vec<Seed> {
+        self.particles[..n.min(self.particles.len())]
             .iter()
             .map(|p| Seed {
                 position: p.position,

@@ -83,6 +83,37 @@ impl<F: Features> Visitor for Storing<'_, F> {
 /// Particles a path stores, for the batch size: about 8 on door, fewer on open scenes.
 const PARTICLES_PER_PATH: usize = 8;
 
+impl ChunkOut {
+    /// Appends `later` (the pass's later paths, traced apart) as one run of both would have
+    /// kept them: both parts at one thinning level, then within `max_particles` together
+    /// (the same particles for any split, as for any batch size: [`super::thinning`]).
+    pub(super) fn append(&mut self, later: &mut ChunkOut, max_particles: usize) {
+        self.drawn += later.drawn;
+        self.guided.0 += later.guided.0;
+        self.guided.1 += later.guided.1;
+        if self.escaped.len() < later.escaped.len() {
+            self.escaped.resize(later.escaped.len(), Rgb::ZERO);
+        }
+        for (e, x) in self.escaped.iter_mut().zip(&later.escaped) {
+            *e += *x;
+        }
+        let level = self.thinning.max(later.thinning);
+        for part in [&mut *self, &mut *later] {
+            let from = part.thinning;
+            super::thinning::thin(&mut part.particles, &mut part.emission_points, from, level);
+            part.thinning = level;
+        }
+        self.particles.append(&mut later.particles);
+        self.emission_points.append(&mut later.emission_points);
+        let kept = Kept {
+            particles: &mut self.particles,
+            seeds: &mut self.emission_points,
+            level: &mut self.thinning,
+        };
+        kept.within(max_particles);
+    }
+}
+
 /// Traces paths `paths` (indices into the pass's streams) in chunks of [`CHUNK`], in
 /// batches; after each batch the particles are thinned while they are more than
 /// `max_particles` ([`super::thinning`]: the result is the same for any batch size, so for

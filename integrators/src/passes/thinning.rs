@@ -101,16 +101,27 @@ impl PassOutput {
         let from = self.stats.thinning;
         thin(&mut self.particles, &mut self.emission_points, from, level);
         self.stats.thinning = self.stats.thinning.max(level);
+        self.forget_seed_count(from);
+    }
+
+    /// A view pass thinned past `from` no longer knows which of its particles its seeding
+    /// paths stored (`PassStats::seed_particles`): its cache then reads them all.
+    fn forget_seed_count(&mut self, from: u32) {
+        if self.stats.thinning > from {
+            self.stats.seed_particles = None;
+        }
     }
 
     /// Thins this pass until it holds at most `max` particles.
     pub fn within(&mut self, max: usize) {
+        let from = self.stats.thinning;
         let kept = Kept {
             particles: &mut self.particles,
             seeds: &mut self.emission_points,
             level: &mut self.stats.thinning,
         };
         kept.within(max);
+        self.forget_seed_count(from);
     }
 
     /// The share of the drawn particles this pass kept: `2^-thinning`.
