@@ -79,13 +79,16 @@ impl Cap {
     /// azimuth turning by the golden angle), a quadrature of the cap's uniform density.
     pub fn quadrature(&self, n: usize) -> impl Iterator<Item = Vec3> + '_ {
         let (t1, t2) = self.dir.any_orthonormal_pair();
-        let turns = golden_turns();
-        (0..n).map(move |k| {
-            let omc = self.one_minus_cos * (k as f32 + 0.5) / n as f32;
-            let sin_a = safe_sqrt(omc * (2.0 - omc));
-            let (cos_phi, sin_phi) = turns.get(k).copied().unwrap_or_else(|| golden_turn(k));
-            (self.dir * (1.0 - omc) + (t1 * cos_phi + t2 * sin_phi) * sin_a).normalize()
-        })
+        spiral(self.dir, t1, t2, self.one_minus_cos, n).map(Vec3::normalize)
+    }
+
+    /// [`Cap::quadrature`]'s points in `frame`'s local coordinates, the cap's axes taken to
+    /// the frame once rather than every point (unit to rounding, not normalised: what a
+    /// grid's cell lookup needs).
+    fn quadrature_local(&self, frame: &Frame, n: usize) -> impl Iterator<Item = Vec3> {
+        let (t1, t2) = self.dir.any_orthonormal_pair();
+        let [d, t1, t2] = [self.dir, t1, t2].map(|v| frame.to_local(v));
+        spiral(d, t1, t2, self.one_minus_cos, n)
     }
 
     /// A direction uniform in solid angle in the cap (`1 - cos α` uniform in
@@ -105,6 +108,24 @@ impl Cap {
         // Sixteen rim draws in a row: the centre is always inside.
         self.dir
     }
+}
+
+/// The spherical Fibonacci spiral of [`Cap::quadrature`] around the unit `dir` with the
+/// orthonormal `t1`, `t2`, over `1 - cos α` in `[0, one_minus_cos)`.
+fn spiral(
+    dir: Vec3,
+    t1: Vec3,
+    t2: Vec3,
+    one_minus_cos: f32,
+    n: usize,
+) -> impl Iterator<Item = Vec3> {
+    let turns = golden_turns();
+    (0..n).map(move |k| {
+        let omc = one_minus_cos * (k as f32 + 0.5) / n as f32;
+        let sin_a = safe_sqrt(omc * (2.0 - omc));
+        let (cos_phi, sin_phi) = turns.get(k).copied().unwrap_or_else(|| golden_turn(k));
+        dir * (1.0 - omc) + (t1 * cos_phi + t2 * sin_phi) * sin_a
+    })
 }
 
 /// Cosine and sine of the `k`-th turn of [`Cap::quadrature`]'s spiral by the golden angle.
@@ -423,6 +444,7 @@ pub fn rasterise_caps(
     caps: impl ExactSizeIterator<Item = (Cap, [f32; 3])>,
 ) -> GridDistribution {
     let cell = 2.0 * PI / (side * side) as f32;
+    // Points in the frame's local coordinates: the grid's cells are read there.
     let mut points: Vec<(Vec3, [f32; 3])> = Vec::with_capacity(caps.len() * 4);
     for (cap, mass) in caps {
         let (t1, t2) = cap.dir.any_orthonormal_pair();
@@ -435,15 +457,15 @@ pub fn rasterise_caps(
             cell_of(rim) == home
         });
         if inside {
-            points.push((cap.dir, mass));
+            points.push((frame.to_local(cap.dir), mass));
             continue;
         }
         let omega = 2.0 * PI * omc;
         let n = ((2.0 * omega / cell).ceil() as usize).clamp(16, MAX_QUADRATURE);
         let m = mass.map(|x| x / n as f32);
-        points.extend(cap.quadrature(n).map(|w| (w, m)));
+        points.extend(cap.quadrature_local(frame, n).map(|w| (w, m)));
     }
-    GridDistribution::from_masses(frame, side, points)
+    GridDistribution::from_local_masses(frame, side, points)
 }
 
 /// The paper's footprints as a [`Guide`].

@@ -103,11 +103,21 @@ impl GridDistribution {
         side: usize,
         points: impl IntoIterator<Item = (Vec3, [f32; 3])>,
     ) -> Self {
+        let local = points.into_iter().map(|(d, m)| (frame.to_local(d), m));
+        Self::from_local_masses(frame, side, local)
+    }
+
+    /// [`GridDistribution::from_masses`] of directions given in `frame`'s local coordinates.
+    pub fn from_local_masses(
+        frame: &Frame,
+        side: usize,
+        points_local: impl IntoIterator<Item = (Vec3, [f32; 3])>,
+    ) -> Self {
         let cells = 2 * side * side;
         let mut acc = vec![[0.0f64; 3]; cells];
         let mut totals = [0.0f64; 3];
-        for (dir, m) in points {
-            let cell = Self::cell_in(side, frame.to_local(dir));
+        for (dir_local, m) in points_local {
+            let cell = Self::cell_in(side, dir_local);
             for ch in 0..3 {
                 acc[cell][ch] += m[ch] as f64;
                 totals[ch] += m[ch] as f64;
