@@ -244,6 +244,7 @@ fn a_maps_file_declaring_a_trillion_particles_is_refused() {
     p.extend_from_slice(&0u32.to_le_bytes()); // escaped
     p.extend_from_slice(&0f64.to_le_bytes()); // seconds
     p.extend_from_slice(&u64::MAX.to_le_bytes()); // every particle seeds
+    p.extend_from_slice(&0u32.to_le_bytes()); // thinning level
     p.extend_from_slice(&1_000_000_000_000u64.to_le_bytes()); // particles
     let mut input = vec![1];
     input.extend_from_slice(&p);
@@ -262,6 +263,7 @@ fn a_maps_file_with_a_nan_particle_is_refused() {
     p.extend_from_slice(&0u32.to_le_bytes());
     p.extend_from_slice(&0f64.to_le_bytes());
     p.extend_from_slice(&u64::MAX.to_le_bytes()); // every particle seeds
+    p.extend_from_slice(&0u32.to_le_bytes()); // thinning level
     p.extend_from_slice(&1u64.to_le_bytes()); // one particle
     for v in [
         [f32::NAN, 0.0, 0.0],

@@ -157,9 +157,12 @@ fn saved_maps_give_the_image_of_a_run_that_built_them() {
     let scene = d.join("cornell.toml");
     let maps = d.join("maps.fpm");
     save_maps(&scene, &maps, "4000");
+    // Path tracing shoots a quarter of the view pass the file holds and seeds its photon
+    // cache with that quarter's importons: the file's count of them gives the same cache.
     for (method, extra) in [
         ("combined-footprint", None),
         ("pt-grid", None),
+        ("pt-footprint", None),
         ("lt-footprint", Some("off")),
     ] {
         let built = d.join(format!("{method}-built.exr"));
@@ -201,6 +204,61 @@ fn saved_maps_give_the_image_of_a_run_that_built_them() {
         &d.join("combined-footprint-built.exr"),
         "--maps shards",
     );
+}
+
+/// A pass saved thinned and loaded keeps its thinning level and its count of the photon
+/// cache's seeds, so that thinning it further on load (a smaller memory budget) gives the
+/// pass thinned there from the start: the same particles and weights. Fails if the level is
+/// lost (the loaded pass would thin again from level 0 and raise its weights by `2^L` more)
+/// or the seed count (path tracing would seed from every importon of a combined pass).
+#[test]
+fn a_saved_pass_keeps_its_thinning_level_and_seed_count() {
+    use footprint::guide::sampler::GuidedSampler;
+    use footprint_app::maps_file;
+    use footprint_integrators::maps::Passes;
+    use footprint_integrators::passes::{PassSettings, view_pass_seeding};
+    let d = workdir("thinned");
+    let scene = footprint::scene::load::load_scene(&common::scene_path("cornell")).unwrap();
+    let settings = |max_particles| PassSettings {
+        paths: 4_000,
+        max_depth: 5,
+        rr_depth: 5,
+        seed: 9,
+        soft_glossy_max: 100.0,
+        specialise: true,
+        target: None,
+        max_particles,
+    };
+    let bsdf = GuidedSampler::bsdf();
+    let view = |max| view_pass_seeding(&scene, &settings(max), &bsdf, 1_000);
+    let whole = view(usize::MAX);
+    let saved = view(whole.particles.len() / 3);
+    let smaller = whole.particles.len() / 9;
+    let there = view(smaller);
+    assert!(0 < saved.stats.thinning && saved.stats.thinning < there.stats.thinning);
+    let file = d.join("passes.fpm");
+    let with = |view| Passes {
+        view: Some(view),
+        ..Passes::default()
+    };
+    for pass in [whole.clone(), saved] {
+        let level = pass.stats.thinning;
+        let seeding = pass.stats.seed_particles;
+        maps_file::save(&file, "k", &with(pass)).unwrap();
+        let mut loaded = maps_file::load(&file, "k").unwrap().view.unwrap();
+        assert_eq!(loaded.stats.thinning, level);
+        assert_eq!(loaded.stats.seed_particles, seeding);
+        if level == 0 {
+            assert!(seeding.is_some_and(|n| n < whole.particles.len()));
+            continue;
+        }
+        loaded.within(smaller);
+        assert_eq!(loaded.stats.thinning, there.stats.thinning);
+        assert_eq!(loaded.particles.len(), there.particles.len());
+        for (p, q) in loaded.particles.iter().zip(&there.particles) {
+            assert_eq!((p.position, p.weight), (q.position, q.weight));
+        }
+    }
 }
 
 #[test]

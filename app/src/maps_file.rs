@@ -20,12 +20,14 @@
 //! ([`crate::scene_hash`]), the resolution, the maximum depth, the seed and the settings
 //! that shape the passes. A pass is a presence byte, then its
 //! statistics (paths u64, emitted 3 x f32, escaped count u32 + 3 x f32 each, seconds f64,
-//! the particles of the paths that seed the photon map's cache u64, `u64::MAX` for all),
+//! the particles of the paths that seed the photon map's cache u64, `u64::MAX` for all, the
+//! thinning level u32),
 //! its particles (count u64; position, direction, normal, weight as 3 x f32 each, depth
 //! u16, specular chain u8) and its emission points (count u64; position, normal 3 x f32).
 //! Positions are the scene's own ([`Scene::origin`]: a scene far from the origin of its file
 //! is centred when loaded), which its content hash fixes; version 1 wrote a far scene's
-//! positions in its file's coordinates, version 2 had no seeding count.
+//! positions in its file's coordinates, version 2 had no seeding count and no thinning level
+//! (a thinned pass thinned again on load had its weights raised by the levels it had passed).
 
 use anyhow::{Result, bail};
 use footprint::Rgb;
@@ -214,6 +216,7 @@ fn put_pass(p: &mut Vec<u8>, out: &PassOutput) {
     p.extend_from_slice(&s.time.as_secs_f64().to_le_bytes());
     let seeding = s.seed_particles.map_or(u64::MAX, |n| n as u64);
     p.extend_from_slice(&seeding.to_le_bytes());
+    p.extend_from_slice(&s.thinning.to_le_bytes());
     p.extend_from_slice(&(out.particles.len() as u64).to_le_bytes());
     p.reserve(out.particles.len() * 51);
     for q in &out.particles {
@@ -282,6 +285,9 @@ impl<'a> Reader<'a> {
             u64::MAX => None,
             n => Some(usize::try_from(n).ok()?),
         };
+        // The level the pass was kept at: thinning it further on load raises from there
+        // (from 0, levels it already passed would raise its weights again).
+        let thinning = self.u32().filter(|&l| l < 64)?;
         let n = self.count(51)?;
         let mut particles = Vec::with_capacity(n);
         for _ in 0..n {
@@ -314,6 +320,7 @@ impl<'a> Reader<'a> {
                 time,
                 particles_drawn,
                 seed_particles: seed_particles.filter(|&n| n <= particles_drawn),
+                thinning,
                 ..Default::default()
             },
         })

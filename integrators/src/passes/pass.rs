@@ -84,6 +84,10 @@ impl PassOutput {
     /// The seeds of the photon map's cache from a view pass: the points of its first
     /// [`crate::maps::seed_paths`] paths ([`PassStats::seed_particles`]), the same whether
     /// the pass shot only those (path tracing) or more (the combined image, `auto`'s pilot).
+    /// A pass thinned to its share of the memory budget no longer knows them and gives all
+    /// its particles: path tracing reading a thinned combined image's or `auto` pilot's maps
+    /// then builds another cache than from its own, smaller pass (the same image only where
+    /// the maps fit their budget).
     pub fn photon_cache_seeds(&self) -> Vec<Seed> {
         self.seeds_of(self.stats.seed_particles.unwrap_or(self.particles.len()))
     }
