@@ -137,7 +137,7 @@ pub struct MapSettings {
     /// Photon paths shot by the light pass.
     pub photons: usize,
     /// Importon paths shot by the view pass (the first quarter of them seed the photon map's
-    /// cache, and path tracing shoots only those: `footprint_integrators::maps::seed_paths`).
+    /// cache, and path tracing shoots only those: `footprint_integrators::passes::seed_paths`).
     pub importons: usize,
     /// Maximum distance of a particle from a query point; `None`: 5% of the scene's
     /// bounding-box diagonal.

@@ -7,7 +7,9 @@
 //! run whenever a cache is built.
 
 use crate::method::Method;
-use crate::passes::{PassOutput, PassSettings, grow_light_pass, light_pass, view_pass_seeding};
+use crate::passes::{
+    PassOutput, PassSettings, grow_light_pass, light_pass, seed_paths, view_pass_seeding,
+};
 use crate::skips::Skip;
 use footprint::guide::cache::{CacheStats, GuideCache, Seed};
 use footprint::guide::particle_map::{MapKind, ParticleInput, ParticleMap};
@@ -126,25 +128,6 @@ pub fn needed_passes(method: &Method, params: &GuideParams) -> (bool, bool) {
         paths.camera || (cache && paths.light),
         paths.light || (cache && paths.camera),
     )
-}
-
-/// The share of a view pass's paths whose particles seed the photon map's cache, and the
-/// share path tracing's view pass shoots (its importons serve only as those seeds). Seeds
-/// only say where regions are: a region is at most the query distance wide and holds at
-/// most `region_seeds`, so a quarter of the seeds gives nearly as many regions (Bitterli's
-/// Cornell box, 64x64: 2711 regions against 3012) and the same error per sample, for a
-/// quarter of the pass's time (docs/measurements/guided-vs-bsdf.md, "Seed passes"). Every
-/// method's photon cache reads the same first paths' particles
-/// (`PassOutput::photon_cache_seeds`), so path tracing builds the cache the combined image
-/// and `auto`'s pilot build. Light tracing's light pass, the importance map's seeds, keeps
-/// its paths: photons are sparse where light arrives through a narrow way, and door
-/// measures worse with a quarter of them.
-pub const SEED_PASS_SHARE: f64 = 0.25;
-
-/// The first paths of a view pass of `paths` paths whose particles seed the photon map's
-/// cache ([`SEED_PASS_SHARE`]).
-pub fn seed_paths(paths: usize) -> usize {
-    ((paths as f64 * SEED_PASS_SHARE) as usize).clamp(1, paths.max(1))
 }
 
 /// Whether `method`'s view pass only seeds the photon map's cache (it reads the photon map

@@ -7,8 +7,10 @@ use crate::pass_settings;
 use footprint::guide::sampler::GuidedSampler;
 use footprint::scene::load::load_scene;
 use footprint_integrators::Method;
-use footprint_integrators::maps::{SEED_PASS_SHARE, run_passes, seed_paths};
-use footprint_integrators::passes::{PassOutput, view_pass, view_pass_seeding};
+use footprint_integrators::maps::run_passes;
+use footprint_integrators::passes::{
+    PassOutput, SEED_PASS_SHARE, seed_paths, view_pass, view_pass_seeding,
+};
 
 /// The same particles in the same order, bit for bit.
 fn assert_same_particles(a: &PassOutput, b: &PassOutput, what: &str) {

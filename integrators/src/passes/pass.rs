@@ -61,7 +61,7 @@ pub struct PassStats {
     /// The thinning level: the pass kept a share `2^-thinning` of its particles
     /// ([`crate::passes::thinning`]); 0 kept all.
     pub thinning: u32,
-    /// View pass: how many of its first particles the first [`crate::maps::seed_paths`]
+    /// View pass: how many of its first particles the first [`crate::passes::seed_paths`]
     /// paths stored, the photon map's cache seeds (`None`: all of them; a thinned pass's).
     pub seed_particles: Option<usize>,
 }
@@ -82,7 +82,7 @@ impl PassOutput {
     }
 
     /// The seeds of the photon map's cache from a view pass: the points of its first
-    /// [`crate::maps::seed_paths`] paths ([`PassStats::seed_particles`]), the same whether
+    /// [`crate::passes::seed_paths`] paths ([`PassStats::seed_particles`]), the same whether
     /// the pass shot only those (path tracing) or more (the combined image, `auto`'s pilot).
     /// A pass thinned to its share of the memory budget no longer knows them and gives all
     /// its particles: path tracing reading a thinned combined image's or `auto` pilot's maps

@@ -84,10 +84,11 @@ impl<F: Features> Visitor for Storing<'_, F> {
 const PARTICLES_PER_PATH: usize = 8;
 
 impl ChunkOut {
-    /// Appends `later` (the pass's later paths, traced apart) as one run of both would have
-    /// kept them: both parts at one thinning level, then within `max_particles` together
-    /// (the same particles for any split, as for any batch size: [`super::thinning`]).
-    pub(super) fn append(&mut self, later: &mut ChunkOut, max_particles: usize) {
+    /// Appends `later` (later paths of the pass: a chunk of a batch, or a part traced apart)
+    /// as one run of both would have kept them: both parts at one thinning level (then
+    /// [`ChunkOut::within`] the budget: the same particles for any split, as for any batch
+    /// size, [`super::thinning`]).
+    pub(super) fn append(&mut self, later: &mut ChunkOut) {
         self.drawn += later.drawn;
         self.guided.0 += later.guided.0;
         self.guided.1 += later.guided.1;
@@ -105,6 +106,10 @@ impl ChunkOut {
         }
         self.particles.append(&mut later.particles);
         self.emission_points.append(&mut later.emission_points);
+    }
+
+    /// Raises the thinning level while the particles are more than `max_particles`.
+    pub(super) fn within(&mut self, max_particles: usize) {
         let kept = Kept {
             particles: &mut self.particles,
             seeds: &mut self.emission_points,
@@ -143,34 +148,17 @@ pub(super) fn run_chunks<'a>(
                     path(i, &mut out, &mut state);
                 }
                 out.guided = (state.prepared_events, state.fallbacks);
+                out.drawn = out.particles.len();
                 out
             })
             .collect();
         all.particles
             .reserve(outs.iter().map(|o| o.particles.len()).sum());
+        // The budget is checked after the batch, not after each chunk of it.
         for mut o in outs {
-            all.drawn += o.particles.len();
-            let kept = Kept {
-                particles: &mut all.particles,
-                seeds: &mut all.emission_points,
-                level: &mut all.thinning,
-            };
-            kept.append(&mut o.particles, &mut o.emission_points);
-            all.guided.0 += o.guided.0;
-            all.guided.1 += o.guided.1;
-            if all.escaped.len() < o.escaped.len() {
-                all.escaped.resize(o.escaped.len(), Rgb::ZERO);
-            }
-            for (e, x) in all.escaped.iter_mut().zip(&o.escaped) {
-                *e += *x;
-            }
+            all.append(&mut o);
         }
-        let kept = Kept {
-            particles: &mut all.particles,
-            seeds: &mut all.emission_points,
-            level: &mut all.thinning,
-        };
-        kept.within(max_particles);
+        all.within(max_particles);
     }
     if all.thinning > 0 {
         all.particles.shrink_to_fit();

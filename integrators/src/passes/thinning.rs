@@ -69,8 +69,8 @@ pub(super) fn thin(particles: &mut Vec<ParticleInput>, seeds: &mut Vec<Seed>, fr
 }
 
 /// What a pass has kept so far, at its thinning level: the batches of a pass are appended
-/// in order and the level raised after each while the particles are more than the pass's
-/// share ([`Kept::within`]). The particles kept in the end do not depend on the batches.
+/// in order (`ChunkOut::append`, each thinned to the level) and the level raised after each
+/// while the particles are more than the pass's share ([`Kept::within`]). The particles kept in the end do not depend on the batches.
 pub(super) struct Kept<'a> {
     pub(super) particles: &'a mut Vec<ParticleInput>,
     pub(super) seeds: &'a mut Vec<Seed>,
@@ -78,13 +78,6 @@ pub(super) struct Kept<'a> {
 }
 
 impl Kept<'_> {
-    /// Appends a batch's particles and seeds (drawn at level 0), thinned to the level.
-    pub(super) fn append(self, particles: &mut Vec<ParticleInput>, seeds: &mut Vec<Seed>) {
-        thin(particles, seeds, 0, *self.level);
-        self.particles.append(particles);
-        self.seeds.append(seeds);
-    }
-
     /// Raises the level while the particles are more than `max`.
     pub(super) fn within(self, max: usize) {
         while self.particles.len() > max && *self.level < 63 {
@@ -190,12 +183,10 @@ mod tests {
         let run = |batch: usize| {
             let (mut kept, mut seeds, mut level) = (Vec::new(), Vec::new(), 0u32);
             for chunk in all.chunks(batch) {
-                let k = Kept {
-                    particles: &mut kept,
-                    seeds: &mut seeds,
-                    level: &mut level,
-                };
-                k.append(&mut chunk.to_vec(), &mut Vec::new());
+                // A batch drawn at level 0, thinned to the level kept so far, appended.
+                let mut drawn = chunk.to_vec();
+                thin(&mut drawn, &mut Vec::new(), 0, level);
+                kept.append(&mut drawn);
                 let k = Kept {
                     particles: &mut kept,
                     seeds: &mut seeds,

@@ -15,12 +15,31 @@ use std::time::Instant;
 
 const DOMAIN_VIEW_PASS: u64 = 12;
 
+/// The share of a view pass's paths whose particles seed the photon map's cache, and the
+/// share path tracing's view pass shoots (its importons serve only as those seeds). Seeds
+/// only say where regions are: a region is at most the query distance wide and holds at
+/// most `region_seeds`, so a quarter of the seeds gives nearly as many regions (Bitterli's
+/// Cornell box, 64x64: 2711 regions against 3012) and the same error per sample, for a
+/// quarter of the pass's time (docs/measurements/guided-vs-bsdf.md, "Seed passes"). Every
+/// method's photon cache reads the same first paths' particles
+/// ([`PassOutput::photon_cache_seeds`]), so path tracing builds the cache the combined image
+/// and `auto`'s pilot build. Light tracing's light pass, the importance map's seeds, keeps
+/// its paths: photons are sparse where light arrives through a narrow way, and door
+/// measures worse with a quarter of them.
+pub const SEED_PASS_SHARE: f64 = 0.25;
+
+/// The first paths of a view pass of `paths` paths whose particles seed the photon map's
+/// cache ([`SEED_PASS_SHARE`]).
+pub fn seed_paths(paths: usize) -> usize {
+    ((paths as f64 * SEED_PASS_SHARE) as usize).clamp(1, paths.max(1))
+}
+
 /// The view pass: an importance map's particles. `sampler` chooses the directions (BSDF
 /// sampling, or guided by a photon map). The particles of its first
-/// [`crate::maps::seed_paths`]`(s.paths)` paths are the photon map's cache seeds
+/// [`seed_paths`]`(s.paths)` paths are the photon map's cache seeds
 /// ([`view_pass_seeding`]).
 pub fn view_pass(scene: &Scene, s: &PassSettings, sampler: &GuidedSampler) -> PassOutput {
-    view_pass_seeding(scene, s, sampler, crate::maps::seed_paths(s.paths))
+    view_pass_seeding(scene, s, sampler, seed_paths(s.paths))
 }
 
 /// The view pass, its first `seed_paths` paths traced first and their particles counted
@@ -65,7 +84,8 @@ pub fn view_pass_seeding(
     let seeding = all.particles.len();
     if k < s.paths {
         let mut rest = run(k..s.paths);
-        all.append(&mut rest, s.max_particles);
+        all.append(&mut rest);
+        all.within(s.max_particles);
     }
     for p in &mut all.particles {
         p.weight *= inv_n;
