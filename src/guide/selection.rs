@@ -21,6 +21,17 @@
 //! would choose for the vertices that matter least. The region takes the candidate with
 //! the smallest sum once it has [`MIN_RECORDS`] such vertices.
 //!
+//! **Before a region has learned**, it takes the cache's pooled choice: the same sums over
+//! every region's records (the choice of the vertices the image weighs most, wherever they
+//! fell), at most [`MAX_POOLED_P_BSDF`], once the cache holds [`MIN_RECORDS`] records; the
+//! configured default before that. Most regions are visited too rarely to learn within a
+//! short budget (Modern Hall at 8 s: 483 of 1,751), and where the guide does not pay, as in
+//! a sky-lit room whose sparse photon map guides from 50 particles a region, the default
+//! even mixture cost 1.3-1.5x BSDF sampling at equal time where the pooled choice
+//! (`p_BSDF = 0.9` there) costs nothing (`docs/measurements/guided-vs-bsdf.md`,
+//! "Pooled selection"). Capped below 1, a region still reads its distribution and gathers
+//! the records that give it its own choice.
+//!
 //! **Guiding where it pays for its time.** A guided vertex costs more than an unguided one
 //! (the region's distribution read at the sampled direction and at the light sample's,
 //! or drawn from), so the sums of the guided candidates are weighed by
@@ -61,6 +72,10 @@ pub const GUIDED_VERTEX_COST: f64 = 1.25;
 /// region").
 pub const MIN_RECORDS: u64 = 512;
 
+/// The most a region short of its own [`MIN_RECORDS`] takes of the cache's pooled choice:
+/// a region at 1 would read nothing of its distribution and gather no records of its own.
+pub const MAX_POOLED_P_BSDF: f32 = 0.9;
+
 /// What one guided vertex of a finished path teaches its region.
 #[derive(Clone, Copy, Debug)]
 pub struct SelectionRecord {
@@ -82,13 +97,56 @@ struct RegionSums {
     records: u64,
 }
 
+impl RegionSums {
+    /// Adds a valid record.
+    fn add(&mut self, r: &SelectionRecord) {
+        for (m, &a) in self.moments.iter_mut().zip(&CANDIDATES) {
+            let p_a = a * r.pdf_bsdf_w + (1.0 - a) * r.pdf_guide_w;
+            // For a < 1, p_a >= min(a, 1 - a) · (p_bsdf + p_guide) > 0 wherever pdf_w > 0;
+            // BSDF sampling alone cannot draw a direction of BSDF density 0 that brought
+            // light back: its second moment is unbounded.
+            *m += if p_a > 0.0 {
+                r.returned2 as f64 * r.pdf_w as f64 / p_a as f64
+            } else {
+                f64::INFINITY
+            };
+        }
+        self.records += 1;
+    }
+
+    /// The candidate of least second moment times cost, once [`MIN_RECORDS`] records made
+    /// the sums.
+    fn best(&self) -> Option<f32> {
+        if self.records < MIN_RECORDS {
+            return None;
+        }
+        let cost = |j: usize| {
+            let c = if CANDIDATES[j] < 1.0 {
+                GUIDED_VERTEX_COST
+            } else {
+                1.0
+            };
+            self.moments[j] * c
+        };
+        (0..CANDIDATES.len())
+            .min_by(|&a, &b| cost(a).total_cmp(&cost(b)))
+            .map(|j| CANDIDATES[j])
+    }
+}
+
 /// The learned probabilities of one guide cache's regions, for one render.
 pub struct SelectionLearner {
     /// `p_BSDF` per region, as `f32` bits: read by every guided vertex, written between
     /// passes.
     p_bsdf: Vec<AtomicU32>,
-    sums: Mutex<Vec<RegionSums>>,
+    sums: Mutex<Learned>,
     default: f32,
+}
+
+/// The sums per region, and pooled over the cache.
+struct Learned {
+    regions: Vec<RegionSums>,
+    pooled: RegionSums,
 }
 
 impl SelectionLearner {
@@ -97,7 +155,10 @@ impl SelectionLearner {
     pub fn new(n: usize, default: f32) -> Self {
         SelectionLearner {
             p_bsdf: (0..n).map(|_| AtomicU32::new(default.to_bits())).collect(),
-            sums: Mutex::new(vec![RegionSums::default(); n]),
+            sums: Mutex::new(Learned {
+                regions: vec![RegionSums::default(); n],
+                pooled: RegionSums::default(),
+            }),
             default,
         }
     }
@@ -113,9 +174,10 @@ impl SelectionLearner {
     /// Adds `records` (in a fixed order) to the sums and re-chooses the probability of
     /// every region with enough records. Call between passes only.
     pub fn absorb(&self, records: &[SelectionRecord]) {
-        let mut sums = self.sums.lock().unwrap_or_else(|e| e.into_inner());
+        let mut learned = self.sums.lock().unwrap_or_else(|e| e.into_inner());
+        let Learned { regions, pooled } = &mut *learned;
         for r in records {
-            let Some(s) = sums.get_mut(r.region as usize) else {
+            let Some(s) = regions.get_mut(r.region as usize) else {
                 continue;
             };
             let valid = r.returned2.is_finite()
@@ -129,49 +191,36 @@ impl SelectionLearner {
             if !valid {
                 continue;
             }
-            for (m, &a) in s.moments.iter_mut().zip(&CANDIDATES) {
-                let p_a = a * r.pdf_bsdf_w + (1.0 - a) * r.pdf_guide_w;
-                // For a < 1, p_a >= min(a, 1 - a) · (p_bsdf + p_guide) > 0 wherever
-                // pdf_w > 0; BSDF sampling alone cannot draw a direction of BSDF density 0
-                // that brought light back: its second moment is unbounded.
-                *m += if p_a > 0.0 {
-                    r.returned2 as f64 * r.pdf_w as f64 / p_a as f64
-                } else {
-                    f64::INFINITY
-                };
-            }
-            s.records += 1;
+            s.add(r);
+            pooled.add(r);
         }
-        for (i, s) in sums.iter().enumerate() {
-            if s.records < MIN_RECORDS {
-                continue;
-            }
-            let cost = |j: usize| {
-                let c = if CANDIDATES[j] < 1.0 {
-                    GUIDED_VERTEX_COST
-                } else {
-                    1.0
-                };
-                s.moments[j] * c
-            };
-            let best = (0..CANDIDATES.len())
-                .min_by(|&a, &b| cost(a).total_cmp(&cost(b)))
-                .map_or(self.default, |j| CANDIDATES[j]);
-            self.p_bsdf[i].store(best.to_bits(), Ordering::Relaxed);
+        // Regions short of their own records take the cache's pooled choice, at most
+        // `MAX_POOLED_P_BSDF` so that they keep guiding a share of their vertices and
+        // gathering the records of their own choice.
+        let prior = self.p_bsdf_before_learning(pooled);
+        for (i, s) in regions.iter().enumerate() {
+            let p = s.best().unwrap_or(prior);
+            self.p_bsdf[i].store(p.to_bits(), Ordering::Relaxed);
         }
     }
 
     /// Regions that have learned their own probability so far, and all regions.
     pub fn learned_regions(&self) -> (usize, usize) {
         let sums = self.sums.lock().unwrap_or_else(|e| e.into_inner());
-        let learned = sums.iter().filter(|s| s.records >= MIN_RECORDS).count();
-        (learned, sums.len())
+        let learned = sums
+            .regions
+            .iter()
+            .filter(|s| s.records >= MIN_RECORDS)
+            .count();
+        (learned, sums.regions.len())
     }
 
     /// Regions learned so far, and the mean and range of their probabilities.
     pub fn summary(&self) -> String {
         let sums = self.sums.lock().unwrap_or_else(|e| e.into_inner());
+        let others = format!("others {}", self.p_bsdf_before_learning(&sums.pooled));
         let learned: Vec<f32> = sums
+            .regions
             .iter()
             .enumerate()
             .filter(|(_, s)| s.records >= MIN_RECORDS)
@@ -179,9 +228,8 @@ impl SelectionLearner {
             .collect();
         if learned.is_empty() {
             return format!(
-                "p_BSDF learned in 0 of {} regions (all {})",
-                sums.len(),
-                self.default
+                "p_BSDF learned in 0 of {} regions ({others})",
+                sums.regions.len(),
             );
         }
         let mean = learned.iter().sum::<f32>() / learned.len() as f32;
@@ -195,12 +243,19 @@ impl SelectionLearner {
             .map(|&c| format!("{c}: {}", learned.iter().filter(|&&p| p == c).count()))
             .collect();
         format!(
-            "p_BSDF learned in {} of {} regions (mean {mean:.2}, {lo}..{hi}; {}; others {})",
+            "p_BSDF learned in {} of {} regions (mean {mean:.2}, {lo}..{hi}; {}; {others})",
             learned.len(),
-            sums.len(),
+            sums.regions.len(),
             counts.join(", "),
-            self.default
         )
+    }
+
+    /// What a region short of its own records takes: the pooled choice, at most
+    /// [`MAX_POOLED_P_BSDF`]; the default until the cache has pooled enough records.
+    fn p_bsdf_before_learning(&self, pooled: &RegionSums) -> f32 {
+        pooled
+            .best()
+            .map_or(self.default, |p| p.min(MAX_POOLED_P_BSDF))
     }
 }
 
@@ -230,8 +285,8 @@ mod tests {
         assert_eq!(l.p_bsdf(0), 0.1);
         assert_eq!(
             l.p_bsdf(1),
-            0.5,
-            "a region without records keeps the default"
+            0.1,
+            "a region without records takes the pooled choice"
         );
         // The reverse: light only where the BSDF is dense; BSDF sampling alone, whose
         // second moment 1 is below 0.9's 1/0.901 weighed by the guide's cost.
@@ -272,6 +327,57 @@ mod tests {
         r.push(records(1, 0.0, 1.0)[0]);
         l.absorb(&r);
         assert!(l.p_bsdf(0) < 1.0, "{}", l.p_bsdf(0));
+    }
+
+    /// `n` records of the even mixture dealt in turn to regions `0..regions`.
+    fn spread(n: u64, regions: u32, pdf_bsdf_w: f32, pdf_guide_w: f32) -> Vec<SelectionRecord> {
+        (0..n)
+            .map(|i| SelectionRecord {
+                region: (i % regions as u64) as u32,
+                ..records(1, pdf_bsdf_w, pdf_guide_w)[0]
+            })
+            .collect()
+    }
+
+    /// Regions short of their own records take the cache's pooled choice once the cache
+    /// holds `MIN_RECORDS`, the default before; BSDF sampling alone only up to
+    /// `MAX_POOLED_P_BSDF`, so that they go on gathering records. A region with its own
+    /// records keeps its own choice whatever the pool says.
+    #[test]
+    fn regions_without_their_own_records_take_the_pooled_choice() {
+        let l = SelectionLearner::new(9, 0.5);
+        let bsdf_dense = spread(MIN_RECORDS, 8, 1.0, 0.01);
+        l.absorb(&bsdf_dense[..MIN_RECORDS as usize - 1]);
+        for i in 0..9 {
+            assert_eq!(
+                l.p_bsdf(i),
+                0.5,
+                "one record short in the cache: the default"
+            );
+        }
+        l.absorb(&bsdf_dense[MIN_RECORDS as usize - 1..]);
+        for i in 0..9 {
+            assert_eq!(l.p_bsdf(i), MAX_POOLED_P_BSDF, "region {i}");
+        }
+        assert_eq!(l.learned_regions(), (0, 9));
+
+        // The reverse pool: light where the guide is dense; and a region that learned the
+        // opposite keeps it.
+        let l = SelectionLearner::new(9, 0.5);
+        let mut r = spread(8 * MIN_RECORDS, 8, 0.01, 1.0);
+        for x in &mut r {
+            x.region += 1;
+        }
+        r.extend(records(MIN_RECORDS, 1.0, 0.01));
+        l.absorb(&r);
+        assert_eq!(l.p_bsdf(0), 1.0, "region 0 learned BSDF sampling alone");
+        for i in 1..9 {
+            assert_eq!(l.p_bsdf(i), 0.1, "region {i} (its own, the pool's)");
+        }
+        let l = SelectionLearner::new(3, 0.5);
+        l.absorb(&spread(MIN_RECORDS, 2, 0.01, 1.0));
+        assert_eq!(l.p_bsdf(2), 0.1, "a region without records: the pool's");
+        assert!(l.summary().contains("others 0.1"), "{}", l.summary());
     }
 
     #[test]
