@@ -131,7 +131,7 @@ pub const SETTINGS: &[Setting] = &[
         "learn-p-bsdf",
         Switch,
         Never,
-        "Camera paths (pt, combined) and light paths (lt, combined) learn the probability of sampling the BSDF per region of their guide cache from earlier passes (on) or keep --p-bsdf everywhere (off)",
+        "Camera paths (pt, combined) and light paths (lt, combined) learn the probability of sampling the BSDF per region of their guide cache from earlier passes, a region short of its own records taking the cache's pooled choice (at most 0.9) (on), or keep --p-bsdf everywhere (off)",
     ),
     s(
         Guide,

@@ -243,8 +243,9 @@ pub struct GuideParams {
     pub k_g_side: usize,
     /// `k_r`: footprint radius scale.
     pub k_r: f32,
-    /// Probability of sampling the BSDF where guiding (with `learn_p_bsdf`: where a region
-    /// has not learned its own yet).
+    /// Probability of sampling the BSDF where guiding (with `learn_p_bsdf`: until the guide
+    /// cache has pooled enough records to choose for the regions that have not learned
+    /// their own).
     pub p_bsdf: f32,
     /// Camera paths (path tracing, the combined image) and light paths (light tracing, the
     /// combined image) learn the probability of sampling the BSDF per region of their guide
