@@ -30,7 +30,9 @@
 //! even mixture cost 1.3-1.5x BSDF sampling at equal time where the pooled choice
 //! (`p_BSDF = 0.9` there) costs nothing (`docs/measurements/guided-vs-bsdf.md`,
 //! "Pooled selection"). Capped below 1, a region still reads its distribution and gathers
-//! the records that give it its own choice.
+//! the records that give it its own choice. The pool counts every record alike, so the
+//! busiest regions weigh most, and regions that learned BSDF sampling alone add no more
+//! records: over a long render the pool leans toward the regions where guiding pays.
 //!
 //! **Guiding where it pays for its time.** A guided vertex costs more than an unguided one
 //! (the region's distribution read at the sampled direction and at the light sample's,
@@ -171,8 +173,9 @@ impl SelectionLearner {
             .map_or(self.default, |p| f32::from_bits(p.load(Ordering::Relaxed)))
     }
 
-    /// Adds `records` (in a fixed order) to the sums and re-chooses the probability of
-    /// every region with enough records. Call between passes only.
+    /// Adds `records` (in a fixed order) to the sums and sets every region's probability:
+    /// its own choice where it has enough records, else the cache's pooled choice (at most
+    /// [`MAX_POOLED_P_BSDF`]), else the default. Call between passes only.
     pub fn absorb(&self, records: &[SelectionRecord]) {
         let mut learned = self.sums.lock().unwrap_or_else(|e| e.into_inner());
         let Learned { regions, pooled } = &mut *learned;
@@ -361,8 +364,8 @@ mod tests {
         }
         assert_eq!(l.learned_regions(), (0, 9));
 
-        // The reverse pool: light where the guide is dense; and a region that learned the
-        // opposite keeps it.
+        // Regions 1-8 learn the most guiding, region 0 BSDF sampling alone: each keeps its
+        // own choice, whatever the pool (0.3 here) says.
         let l = SelectionLearner::new(9, 0.5);
         let mut r = spread(8 * MIN_RECORDS, 8, 0.01, 1.0);
         for x in &mut r {
@@ -372,8 +375,9 @@ mod tests {
         l.absorb(&r);
         assert_eq!(l.p_bsdf(0), 1.0, "region 0 learned BSDF sampling alone");
         for i in 1..9 {
-            assert_eq!(l.p_bsdf(i), 0.1, "region {i} (its own, the pool's)");
+            assert_eq!(l.p_bsdf(i), 0.1, "region {i}: its own choice");
         }
+        // The reverse pool (light where the guide is dense) for a region without records.
         let l = SelectionLearner::new(3, 0.5);
         l.absorb(&spread(MIN_RECORDS, 2, 0.01, 1.0));
         assert_eq!(l.p_bsdf(2), 0.1, "a region without records: the pool's");
