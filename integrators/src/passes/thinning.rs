@@ -70,7 +70,8 @@ pub(super) fn thin(particles: &mut Vec<ParticleInput>, seeds: &mut Vec<Seed>, fr
 
 /// What a pass has kept so far, at its thinning level: the batches of a pass are appended
 /// in order (`ChunkOut::append`, each thinned to the level) and the level raised after each
-/// while the particles are more than the pass's share ([`Kept::within`]). The particles kept in the end do not depend on the batches.
+/// while the particles are more than the pass's share ([`Kept::within`]). The particles kept
+/// in the end do not depend on the batches.
 pub(super) struct Kept<'a> {
     pub(super) particles: &'a mut Vec<ParticleInput>,
     pub(super) seeds: &'a mut Vec<Seed>,
