@@ -350,3 +350,53 @@ fn integrator_auto_alone_chooses_the_guide_too() {
     );
     assert_eq!(label("f.toml", named, &["--integrator", "lt"]), "fixed");
 }
+
+/// The first guide's maps are judged by their own particle passes, timed on a sixteenth of
+/// their paths and scaled up (`PROBE_SHARE`, `MAPS_BUILD_FACTOR`), not by the rendered
+/// passes' time per path: in the slit room a light path of a rendered pass connects to the
+/// camera at every vertex, and the rendered passes put the maps at about twice what they
+/// take. Without a time budget (`--spp`) the estimate is of the particle passes, builds
+/// and the importance target alone, so it is compared with what the same maps took when
+/// piloted: within a factor of 1.6 either way (the estimate uses the high end of the
+/// builds' measured share, 1.7 of the passes; the slit room's is 1.7). Both are times of
+/// the same machine in one run, so its speed cancels.
+#[test]
+fn the_maps_are_judged_by_their_own_particle_passes() {
+    let scene = load_scene(&common::scenes_dir().join("slit/scene.xml")).unwrap();
+    let mut spec = AutoSpec::all();
+    spec.candidates.retain(|m| m.guide.name() != "grid");
+    let choice = |spp: u32| {
+        let o = RenderOptions {
+            spp,
+            max_depth: 10,
+            ..opts()
+        };
+        choose(&scene, &o, &spec)
+    };
+    // A horizon too short for any maps: the estimate is noted.
+    let short = choice(1);
+    let estimate = short
+        .notes
+        .iter()
+        .find_map(|n| match n {
+            Note::MapsTooCostly {
+                guide: "footprint",
+                estimate_s,
+                ..
+            } => Some(*estimate_s),
+            _ => None,
+        })
+        .unwrap_or_else(|| panic!("the maps fit one pass's horizon: {short:?}"));
+    // A horizon long enough: the maps are built and timed.
+    let long = choice(1_000_000);
+    assert!(
+        long.candidates.iter().any(|c| c.method == "pt-footprint"),
+        "{long:?}"
+    );
+    let took = long.pilot.maps_s;
+    eprintln!("maps estimated {estimate:.3} s, took {took:.3} s");
+    assert!(
+        estimate < 1.6 * took && estimate > took / 1.6,
+        "maps estimated at {estimate:.3} s, took {took:.3} s"
+    );
+}

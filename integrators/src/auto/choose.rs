@@ -4,7 +4,7 @@
 use super::choice::{Choice, Decision, Note, PilotTimes};
 use super::metric::{Metric, Pooled, fold_metrics};
 use super::params::*;
-use super::pilot::{Ahead, Pilot, pass_seconds, pilot_passes};
+use super::pilot::{Ahead, Pilot, particle_pass_seconds, pass_seconds, pilot_passes};
 use super::predict::{Candidate, GuidedPilot, can_miss_light, measure, predict_all};
 use super::rank::rank;
 use super::spec::AutoSpec;
@@ -12,7 +12,7 @@ use super::split::SplitPilot;
 use crate::maps::{Guidance, run_passes};
 use crate::method::Method;
 use crate::passes::target::{ImportanceTarget, TARGET_PASSES};
-use crate::render::{RenderOptions, guidance_with, pass_settings, with_built_target};
+use crate::render::{RenderOptions, guidance_with, pass_settings, wants_target, with_built_target};
 use crate::skips::particles_stored;
 use footprint::scene::Scene;
 use footprint::settings::GuideParams;
@@ -388,20 +388,9 @@ fn pilot_guides(plan: &Plan, t_pt_image: f64, pixel_ratio: f64, notes: &mut Vec<
     // the budget, so that every guide fits where one did.
     out.count = guides.len();
     let guided_pilot = PILOT_SHARE / out.count.max(1) as f64;
+    // The particle passes' time, once measured (`particle_pass_seconds`).
+    let mut probed: Option<f64> = None;
     for gname in guides {
-        // A particle path costs about a pass's path; the map and cache builds about as much
-        // again, and the guided pilot passes as much as both: four times the passes' paths
-        // alone.
-        let npix = scene.camera.pixel_count() as f64;
-        let maps_est = match last_guided {
-            // The next guide reuses the passes.
-            Some(t) => (t - passes_s).max(0.0),
-            None => {
-                4.0 * (scene.maps.photons as f64 * plan.t_lt / npix
-                    + scene.maps.importons as f64 * plan.t_pt / npix)
-                    + budget.map_or(0.0, |t| guided_pilot * t)
-            }
-        };
         if let (Some(c), false) = (&plan.easy_scene, plan.only_guided) {
             notes.push(Note::EasyScene {
                 guide: gname,
@@ -410,6 +399,30 @@ fn pilot_guides(plan: &Plan, t_pt_image: f64, pixel_ratio: f64, notes: &mut Vec<
             });
             continue;
         }
+        // The first guide's maps: its particle passes as measured on a part of their paths
+        // (the same for every guide, measured once), the map and cache builds up to
+        // MAPS_BUILD_FACTOR times as long again, and its pilot passes (the combined image's
+        // and each splitting direction's, about twice its pilot share); a later guide takes
+        // what the first one's maps and pilot took, less the passes it reuses.
+        let maps_est = match last_guided {
+            Some(t) => (t - passes_s).max(0.0),
+            None => {
+                let both = find("combined", gname);
+                let particles_s =
+                    *probed.get_or_insert_with(|| particle_pass_seconds(scene, opts, &both));
+                let target_s = if wants_target(&RenderOptions {
+                    method: both,
+                    ..opts.clone()
+                }) {
+                    TARGET_PASSES as f64 * (plan.t_pt + plan.t_lt)
+                } else {
+                    0.0
+                };
+                (1.0 + MAPS_BUILD_FACTOR) * particles_s
+                    + target_s
+                    + budget.map_or(0.0, |t| 2.0 * guided_pilot * t)
+            }
+        };
         let spent = guided_start.elapsed().as_secs_f64();
         let maps_share = if out.pilots.is_empty() {
             FIRST_GUIDE_MAPS_SHARE

@@ -16,14 +16,28 @@ pub const GUIDED_MAPS_SHARE: f64 = 0.15;
 /// [`GUIDED_MAPS_SHARE`]); a larger share takes more of the budget from the method that
 /// renders. Measured: docs/measurements/auto.md, "door at 256x256".
 pub const FIRST_GUIDE_MAPS_SHARE: f64 = 0.3;
+/// The share of the maps' particle paths the pilot shoots to time their passes before it
+/// decides whether the first guide's maps fit (`particle_pass_seconds`): 1/16 costs a
+/// sixteenth of passes that may then run in full, and holds thousands of paths.
+pub const PROBE_SHARE: f64 = 1.0 / 16.0;
+/// The map and cache builds' time over the particle passes' that the first guide's maps are
+/// estimated with: 0.2 to 1.7 measured (Veach MIS 0.2, Veach Bidir 1.5, the slit room 1.4
+/// for `pt-footprint`'s maps and 1.7 for `combined-footprint`'s, 16 s budgets); the high
+/// end, so that a guide is piloted only where its maps fit.
+pub const MAPS_BUILD_FACTOR: f64 = 1.7;
 /// Guided candidates are piloted only where one pass of the unguided candidate the pilot
 /// predicts best has at least this relative variance (the metric's, averaged over pixels
 /// and channels: about the squared relative noise of one sample per pixel). Below it the
 /// image converges without guiding, and a guided pilot (maps, caches and passes) costs more
-/// than guiding wins; above it guided methods win by several times. The scenes' values
-/// (furnace 0.02 to desk 2.8, guided methods even or behind; Veach Ajar 48 and door 2650,
-/// guided methods ahead): docs/auto.md, "The pilot".
-pub const GUIDED_MIN_PASS_VARIANCE: f64 = 10.0;
+/// than guiding wins. Measured at 16 s: the furnace 0.00, the Cornell boxes 0.4, desk 0.8,
+/// the public rooms 0.7-1.4, glass 1.5, Veach Bidir 1.8-2.8 and the living room 2.3-2.5
+/// (guided path tracing even or behind); Veach MIS 0.8-9.8 from one pilot to the next
+/// (guided path tracing at about half `pt-bsdf`'s error); the slit room, Veach Ajar and
+/// door far above. At 10 the
+/// gate left Veach MIS unpiloted on most runs (`auto` 2.2x the best method's error); at 4
+/// its guides are piloted on some (1.22x), and the breakfast room (about 9.7) pays for a
+/// guided pilot (1.2x): docs/auto.md, "The pilot", and docs/measurements/auto.md.
+pub const GUIDED_MIN_PASS_VARIANCE: f64 = 4.0;
 /// A guided candidate is chosen only when predicted better than BSDF sampling of its own
 /// integrator by this factor (else the next candidate is). The pilot's passes are
 /// independent samples, but the render's are a Sobol sequence, whose stratification gains

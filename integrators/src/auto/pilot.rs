@@ -3,12 +3,16 @@
 //! time lasts ([`passes_until`]), and the time of one pass of a method as it renders
 //! ([`pass_seconds`]). See the module doc of [`crate::auto`] for what they measure.
 
-use super::params::{FOLDS, MAX_BATCHES};
-use crate::maps::Guidance;
+use super::params::{FOLDS, MAX_BATCHES, PROBE_SHARE};
+use crate::maps::{Guidance, needed_passes};
 use crate::method::Method;
 use crate::moments;
-use crate::render::{RenderOptions, RenderResult, StopRule, independent_pass, render_prepared};
+use crate::passes::{PassSettings, light_pass, view_pass};
+use crate::render::{
+    RenderOptions, RenderResult, StopRule, independent_pass, pass_settings, render_prepared,
+};
 use footprint::film::Image;
+use footprint::guide::sampler::GuidedSampler;
 use footprint::scene::Scene;
 use footprint::settings::GuideParams;
 use std::time::{Duration, Instant};
@@ -240,6 +244,36 @@ pub(super) fn pass_seconds(
             r.timings.tracing.as_secs_f64()
         })
         .fold(f64::INFINITY, f64::min)
+}
+
+/// The time the particle passes of `method`'s maps take (`scene.maps`' path counts, every
+/// map round), measured on [`PROBE_SHARE`] of their paths, BSDF-sampled as a first round
+/// shoots them, and scaled up. A particle path costs what the scene's paths cost there, not
+/// what a rendered pass's does (those connect every vertex to the camera or a light): on
+/// the slit room the pass times put the passes at three times what they take.
+pub(super) fn particle_pass_seconds(scene: &Scene, opts: &RenderOptions, method: &Method) -> f64 {
+    let (need_light, need_view) = needed_passes(method, &opts.guide_params);
+    let pass = pass_settings(scene, opts);
+    let bsdf = GuidedSampler::bsdf();
+    let probe = |n: usize| ((n as f64 * PROBE_SHARE).ceil() as usize).max(1);
+    let start = Instant::now();
+    if need_light {
+        let s = PassSettings {
+            paths: probe(scene.maps.photons),
+            ..pass.clone()
+        };
+        light_pass(scene, &s, &bsdf);
+    }
+    if need_view {
+        let s = PassSettings {
+            paths: probe(scene.maps.importons),
+            ..pass
+        };
+        view_pass(scene, &s, &bsdf);
+    }
+    // Each round before the last shoots half the paths of the one after it.
+    let rounds = 2.0 - 0.5f64.powi(scene.maps.rounds.max(1) as i32 - 1);
+    start.elapsed().as_secs_f64() / PROBE_SHARE * rounds
 }
 
 /// An image of `w` x `h` pixels, each pixel `value(i)` in every channel (for the tests).
