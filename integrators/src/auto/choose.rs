@@ -405,11 +405,23 @@ fn pilot_guides(plan: &Plan, t_pt_image: f64, pixel_ratio: f64, notes: &mut Vec<
         // and each splitting direction's, about twice its pilot share); a later guide takes
         // what the first one's maps and pilot took, less the passes it reuses.
         let maps_est = match last_guided {
+            // Every candidate guided: the maps are piloted whatever they cost.
+            _ if plan.only_guided => 0.0,
             Some(t) => (t - passes_s).max(0.0),
             None => {
                 let both = find("combined", gname);
-                let particles_s =
-                    *probed.get_or_insert_with(|| particle_pass_seconds(scene, opts, &both));
+                // The probe's time counts as the maps' (the pilot's times say so).
+                let particles_s = *probed.get_or_insert_with(|| {
+                    let t = Instant::now();
+                    // Passes skipped where no surface of the scene stores particles.
+                    let s = if !opts.specialise || particles_stored(scene) {
+                        particle_pass_seconds(scene, opts, &both)
+                    } else {
+                        0.0
+                    };
+                    out.maps_s += t.elapsed().as_secs_f64();
+                    s
+                });
                 let target_s = if wants_target(&RenderOptions {
                     method: both,
                     ..opts.clone()

@@ -41,11 +41,11 @@
 //! * **Guided candidates** (`--guide auto`) are piloted only where one pass of the best
 //!   unguided candidate has at least [`GUIDED_MIN_PASS_VARIANCE`] relative variance (a scene
 //!   hard per sample), and when their maps are predicted to take at most
-//!   [`FIRST_GUIDE_MAPS_SHARE`] of the budget for the first guide, [`GUIDED_MAPS_SHARE`]
-//!   for all together after it (the particle passes timed on [`PROBE_SHARE`] of their paths,
-//!   the builds [`MAPS_BUILD_FACTOR`] times as long); the guides share one pilot's time
-//!   ([`PILOT_SHARE`] / the number of guides each); their maps are then built once, piloted with the same passes, and reused by
-//!   the render if one of them wins. With one map round the particle passes do not depend on
+//!   [`FIRST_GUIDE_MAPS_SHARE`] of the budget for the first guide (its particle passes
+//!   timed on [`PROBE_SHARE`] of their paths, the builds [`MAPS_BUILD_FACTOR`] times as
+//!   long), [`GUIDED_MAPS_SHARE`] for all together after it; the guides share one
+//!   pilot's time ([`PILOT_SHARE`] / the number of guides each); their maps are then built
+//!   once, piloted with the same passes, and reused by the render if one of them wins. With one map round the particle passes do not depend on
 //!   the guide: they run once and every guide builds its maps and caches from them. A
 //!   guide not piloted (its maps would not fit) leaves its pilot time to those piloted.
 //!   When a method that reads the photon map wins, its sparse photon map grows with the time
@@ -87,6 +87,7 @@ mod split;
 pub use choice::{Choice, Decision, Note, PilotTimes};
 pub use choose::{choose, pilot_resolution};
 pub use params::*;
+pub use pilot::particle_pass_seconds;
 pub use predict::Candidate;
 pub use rank::{GUIDED_RIVAL, SPLIT_RIVAL};
 pub use run::{Rendered, Run, SavedMaps, chosen_guidance, render_request};

@@ -17,8 +17,8 @@ pub const GUIDED_MAPS_SHARE: f64 = 0.15;
 /// renders. Measured: docs/measurements/auto.md, "door at 256x256".
 pub const FIRST_GUIDE_MAPS_SHARE: f64 = 0.3;
 /// The share of the maps' particle paths the pilot shoots to time their passes before it
-/// decides whether the first guide's maps fit (`particle_pass_seconds`): 1/16 costs a
-/// sixteenth of passes that may then run in full, and holds thousands of paths.
+/// decides whether the first guide's maps fit (`particle_pass_seconds`, which shoots at
+/// least four chunks of paths per worker): a sixteenth of passes that may then run in full.
 pub const PROBE_SHARE: f64 = 1.0 / 16.0;
 /// The map and cache builds' time over the particle passes' that the first guide's maps are
 /// estimated with: 0.2 to 1.7 measured (Veach MIS 0.2, Veach Bidir 1.5, the slit room 1.4

@@ -1,13 +1,13 @@
 //! The pilot's passes: per-pixel running moments of each layer ([`Moments`]), a pilot's
 //! passes of one combined image dealt to folds ([`Pilot`], [`pilot_passes`]) while its
-//! time lasts ([`passes_until`]), and the time of one pass of a method as it renders
-//! ([`pass_seconds`]). See the module doc of [`crate::auto`] for what they measure.
+//! time lasts ([`passes_until`]), the time of one pass of a method as it renders
+//! ([`pass_seconds`]) and of the particle passes of its maps ([`particle_pass_seconds`]). See the module doc of [`crate::auto`] for what they measure.
 
 use super::params::{FOLDS, MAX_BATCHES, PROBE_SHARE};
 use crate::maps::{Guidance, needed_passes};
 use crate::method::Method;
 use crate::moments;
-use crate::passes::{PassSettings, light_pass, view_pass};
+use crate::passes::{CHUNK_PATHS, PassSettings, light_pass, view_pass};
 use crate::render::{
     RenderOptions, RenderResult, StopRule, independent_pass, pass_settings, render_prepared,
 };
@@ -247,33 +247,50 @@ pub(super) fn pass_seconds(
 }
 
 /// The time the particle passes of `method`'s maps take (`scene.maps`' path counts, every
-/// map round), measured on [`PROBE_SHARE`] of their paths, BSDF-sampled as a first round
-/// shoots them, and scaled up. A particle path costs what the scene's paths cost there, not
-/// what a rendered pass's does (those connect every vertex to the camera or a light): on
-/// the slit room the pass times put the passes at three times what they take.
-pub(super) fn particle_pass_seconds(scene: &Scene, opts: &RenderOptions, method: &Method) -> f64 {
+/// map round), each pass measured on [`PROBE_SHARE`] of its paths (at least four chunks of
+/// paths per worker thread, so that every worker stays busy as in the full pass; all of
+/// them where that is more), BSDF-sampled as a first round shoots them, and scaled up. A
+/// particle path costs what the scene's paths cost there, not what a rendered pass's does
+/// (those connect every vertex to the camera or a light): on the slit room the rendered
+/// passes' time per path puts the maps at about four times what they take.
+pub fn particle_pass_seconds(scene: &Scene, opts: &RenderOptions, method: &Method) -> f64 {
     let (need_light, need_view) = needed_passes(method, &opts.guide_params);
     let pass = pass_settings(scene, opts);
     let bsdf = GuidedSampler::bsdf();
-    let probe = |n: usize| ((n as f64 * PROBE_SHARE).ceil() as usize).max(1);
-    let start = Instant::now();
+    let least = 4 * rayon::current_num_threads() * CHUNK_PATHS;
+    let probe = |n: usize| ((n as f64 * PROBE_SHARE).ceil() as usize).max(least).min(n);
+    // One pass on `probe(n)` of its `n` paths, its time scaled to `n`.
+    let timed = |n: usize, run: &dyn Fn(usize)| {
+        let m = probe(n);
+        if m == 0 {
+            return 0.0;
+        }
+        let start = Instant::now();
+        run(m);
+        start.elapsed().as_secs_f64() * n as f64 / m as f64
+    };
+    let mut seconds = 0.0;
     if need_light {
-        let s = PassSettings {
-            paths: probe(scene.maps.photons),
-            ..pass.clone()
-        };
-        light_pass(scene, &s, &bsdf);
+        seconds += timed(scene.maps.photons, &|paths| {
+            let s = PassSettings {
+                paths,
+                ..pass.clone()
+            };
+            light_pass(scene, &s, &bsdf);
+        });
     }
     if need_view {
-        let s = PassSettings {
-            paths: probe(scene.maps.importons),
-            ..pass
-        };
-        view_pass(scene, &s, &bsdf);
+        seconds += timed(scene.maps.importons, &|paths| {
+            let s = PassSettings {
+                paths,
+                ..pass.clone()
+            };
+            view_pass(scene, &s, &bsdf);
+        });
     }
     // Each round before the last shoots half the paths of the one after it.
     let rounds = 2.0 - 0.5f64.powi(scene.maps.rounds.max(1) as i32 - 1);
-    start.elapsed().as_secs_f64() / PROBE_SHARE * rounds
+    seconds * rounds
 }
 
 /// An image of `w` x `h` pixels, each pixel `value(i)` in every channel (for the tests).

@@ -38,5 +38,6 @@ mod view_pass;
 
 pub use light_pass::{grow_light_pass, light_pass};
 pub use pass::{PassOutput, PassSettings, PassStats};
+pub use storing::CHUNK_PATHS;
 pub use target::ImportanceTarget;
 pub use view_pass::{SEED_PASS_SHARE, seed_paths, view_pass, view_pass_seeding};

@@ -19,7 +19,8 @@ use std::ops::Range;
 use super::pass::PassSettings;
 use super::thinning::Kept;
 
-const CHUNK: usize = 2048;
+/// Paths a worker traces as one task of a pass.
+pub const CHUNK_PATHS: usize = 2048;
 
 #[derive(Default)]
 pub(super) struct ChunkOut {
@@ -119,7 +120,7 @@ impl ChunkOut {
     }
 }
 
-/// Traces paths `paths` (indices into the pass's streams) in chunks of [`CHUNK`], in
+/// Traces paths `paths` (indices into the pass's streams) in chunks of [`CHUNK_PATHS`], in
 /// batches; after each batch the particles are thinned while they are more than
 /// `max_particles` ([`super::thinning`]: the result is the same for any batch size, so for
 /// any thread count). `all.thinning` is the level reached, `all.drawn` the particles
@@ -129,13 +130,13 @@ pub(super) fn run_chunks<'a>(
     max_particles: usize,
     path: impl Fn(usize, &mut ChunkOut, &mut SamplerState<'a>) + Sync,
 ) -> ChunkOut {
-    let chunks = paths.len().div_ceil(CHUNK);
+    let chunks = paths.len().div_ceil(CHUNK_PATHS);
     // Chunks traced between two checks of the budget: as many as hold a quarter of the
     // budget's particles at [`PARTICLES_PER_PATH`] (the whole pass at once under the
     // default budget), and one per worker at least, so that what a pass holds past its
     // budget is at most one batch and every worker has a chunk.
     let batch =
-        (max_particles / (4 * CHUNK * PARTICLES_PER_PATH)).max(rayon::current_num_threads());
+        (max_particles / (4 * CHUNK_PATHS * PARTICLES_PER_PATH)).max(rayon::current_num_threads());
     let mut all = ChunkOut::default();
     for first_chunk in (0..chunks).step_by(batch) {
         let outs: Vec<ChunkOut> = (first_chunk..(first_chunk + batch).min(chunks))
@@ -143,8 +144,8 @@ pub(super) fn run_chunks<'a>(
             .map(|c| {
                 let mut out = ChunkOut::default();
                 let mut state = SamplerState::default();
-                let first = paths.start + c * CHUNK;
-                for i in first..(first + CHUNK).min(paths.end) {
+                let first = paths.start + c * CHUNK_PATHS;
+                for i in first..(first + CHUNK_PATHS).min(paths.end) {
                     path(i, &mut out, &mut state);
                 }
                 out.guided = (state.prepared_events, state.fallbacks);
