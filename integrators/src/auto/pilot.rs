@@ -259,34 +259,25 @@ pub fn particle_pass_seconds(scene: &Scene, opts: &RenderOptions, method: &Metho
     let bsdf = GuidedSampler::bsdf();
     let least = 4 * rayon::current_num_threads() * CHUNK_PATHS;
     let probe = |n: usize| ((n as f64 * PROBE_SHARE).ceil() as usize).max(least).min(n);
-    // One pass on `probe(n)` of its `n` paths, its time scaled to `n`.
-    let timed = |n: usize, run: &dyn Fn(usize)| {
+    type Pass = fn(&Scene, &PassSettings, &GuidedSampler) -> crate::passes::PassOutput;
+    let passes: [(bool, usize, Pass); 2] = [
+        (need_light, scene.maps.photons, light_pass),
+        (need_view, scene.maps.importons, view_pass),
+    ];
+    // Each pass on `probe(n)` of its `n` paths, its time scaled to `n`.
+    let mut seconds = 0.0;
+    for (_, n, run) in passes.into_iter().filter(|p| p.0) {
         let m = probe(n);
         if m == 0 {
-            return 0.0;
+            continue;
         }
+        let s = PassSettings {
+            paths: m,
+            ..pass.clone()
+        };
         let start = Instant::now();
-        run(m);
-        start.elapsed().as_secs_f64() * n as f64 / m as f64
-    };
-    let mut seconds = 0.0;
-    if need_light {
-        seconds += timed(scene.maps.photons, &|paths| {
-            let s = PassSettings {
-                paths,
-                ..pass.clone()
-            };
-            light_pass(scene, &s, &bsdf);
-        });
-    }
-    if need_view {
-        seconds += timed(scene.maps.importons, &|paths| {
-            let s = PassSettings {
-                paths,
-                ..pass.clone()
-            };
-            view_pass(scene, &s, &bsdf);
-        });
+        run(scene, &s, &bsdf);
+        seconds += start.elapsed().as_secs_f64() * n as f64 / m as f64;
     }
     // Each round before the last shoots half the paths of the one after it.
     let rounds = 2.0 - 0.5f64.powi(scene.maps.rounds.max(1) as i32 - 1);
