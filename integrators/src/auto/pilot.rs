@@ -1,7 +1,8 @@
 //! The pilot's passes: per-pixel running moments of each layer ([`Moments`]), a pilot's
 //! passes of one combined image dealt to folds ([`Pilot`], [`pilot_passes`]) while its
 //! time lasts ([`passes_until`]), the time of one pass of a method as it renders
-//! ([`pass_seconds`]) and of the particle passes of its maps ([`particle_pass_seconds`]). See the module doc of [`crate::auto`] for what they measure.
+//! ([`pass_seconds`]) and of the particle passes of its maps ([`particle_pass_seconds`]).
+//! See the module doc of [`crate::auto`] for what they measure.
 
 use super::params::{FOLDS, MAX_BATCHES, PROBE_SHARE};
 use crate::maps::{Guidance, needed_passes};
