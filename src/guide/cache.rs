@@ -158,9 +158,32 @@ impl CacheStats {
 /// The regions and the tree that finds them.
 pub struct GuideCache {
     nodes: Vec<PackedNode>,
+    /// Where a lookup's descent may start, by a coarse grid over the seeds' box.
+    entry: EntryGrid,
     leaves: Vec<[u32; 6]>,
     regions: Vec<Region>,
+    /// What every vertex in a region reads, packed apart from the regions (20 bytes each
+    /// against a [`Region`]'s 224): a vertex in a region that does not guide, or that
+    /// learned BSDF sampling alone, touches no [`Region`] (`docs/measurements/speed.md`,
+    /// "Where a guided vertex's time goes").
+    summaries: Vec<RegionSummary>,
     pub stats: CacheStats,
+}
+
+/// A region's [`Region::density`] and whether it has a distribution.
+#[derive(Clone, Copy, Debug)]
+pub struct RegionSummary {
+    pub density: Option<Rgb>,
+    pub guides: bool,
+}
+
+impl RegionSummary {
+    fn of(r: &Region) -> Self {
+        RegionSummary {
+            density: r.density,
+            guides: r.distribution.is_some(),
+        }
+    }
 }
 
 /// A region to build: its seeds' bucket in one leaf.
@@ -188,6 +211,7 @@ impl GuideCache {
             .copied()
             .collect();
         let n_seeds = seeds.len();
+        let (lo, hi) = crate::math::bounds(seeds.iter().map(|s| s.position));
         let Subtree {
             nodes,
             leaves,
@@ -205,7 +229,9 @@ impl GuideCache {
             .iter()
             .filter(|r| r.distribution.is_some())
             .collect();
+        let entry = EntryGrid::build(&nodes, lo, hi, leaves.len());
         let heap_bytes = nodes.capacity() * std::mem::size_of::<PackedNode>()
+            + entry.start.capacity() * 4
             + leaves.capacity() * std::mem::size_of::<[u32; 6]>()
             + regions.capacity() * std::mem::size_of::<Region>()
             + guiding
@@ -231,7 +257,9 @@ impl GuideCache {
         };
         GuideCache {
             nodes,
+            entry,
             leaves,
+            summaries: regions.iter().map(RegionSummary::of).collect(),
             regions,
             stats,
         }
@@ -247,7 +275,10 @@ impl GuideCache {
     /// The index in [`GuideCache::regions`] of the region [`GuideCache::lookup`] finds.
     #[inline]
     pub fn lookup_index(&self, x: Vec3, n: Vec3) -> Option<u32> {
-        let mut i = 0usize;
+        // The coordinate of a split's axis read by index from an array rather than by
+        // glam's `Index`, whose match becomes a jump table that mispredicts at every node.
+        let xs = [x.x, x.y, x.z, 0.0];
+        let mut i = self.entry.start_node(x);
         loop {
             let node = *self.nodes.get(i)?;
             let (axis, index) = node.decode();
@@ -255,7 +286,7 @@ impl GuideCache {
                 let r = self.leaves[index as usize][normal_bucket(n)];
                 return (r != NONE).then_some(r);
             }
-            i = if x[axis as usize] < node.split {
+            i = if xs[(axis & 3) as usize] < node.split {
                 i + 1
             } else {
                 index as usize
@@ -265,6 +296,128 @@ impl GuideCache {
 
     pub fn regions(&self) -> &[Region] {
         &self.regions
+    }
+
+    /// Region `i`'s [`RegionSummary`].
+    #[inline]
+    pub fn summary(&self, i: u32) -> &RegionSummary {
+        &self.summaries[i as usize]
+    }
+}
+
+/// A coarse grid over the seeds' bounding box that tells a lookup where in the region tree
+/// its descent may start: for each cell, the deepest node every point of the cell reaches
+/// (the descent from the root takes the same side of every split above it for all of the
+/// cell's points). The lookup then skips the tree's top levels, a chain of dependent loads
+/// and comparisons at every scattering event, and finds the same region
+/// (`tests::the_entry_grid_finds_what_the_root_finds`). Points outside the box start at the
+/// root.
+#[derive(Default)]
+struct EntryGrid {
+    lo: Vec3,
+    /// Cells per unit length along each axis.
+    scale: Vec3,
+    dims: [u32; 3],
+    start: Vec<u32>,
+}
+
+/// About this many grid cells per leaf of the tree (the cells are cheap, 4 bytes each, and a
+/// cell that holds many leaves stops its descent early).
+const ENTRY_CELLS_PER_LEAF: usize = 4;
+
+/// At most this many cells (1 MB).
+const ENTRY_MAX_CELLS: usize = 1 << 18;
+
+impl EntryGrid {
+    fn build(nodes: &[PackedNode], lo: Vec3, hi: Vec3, leaves: usize) -> Self {
+        let extent = hi - lo;
+        if nodes.is_empty() || !extent.is_finite() || !(extent.max_element() > 0.0) {
+            return EntryGrid::default();
+        }
+        // Cells as near to cubes as the box allows, about `ENTRY_CELLS_PER_LEAF` per leaf;
+        // a flat axis (all seeds on one plane) gets one cell.
+        let cells = (leaves * ENTRY_CELLS_PER_LEAF).clamp(1, ENTRY_MAX_CELLS) as f32;
+        let positive = extent
+            .to_array()
+            .map(|e| e.max(extent.max_element() * 1e-3));
+        let side = (positive.iter().product::<f32>() / cells).cbrt();
+        let dims = positive.map(|e| ((e / side).round() as u32).clamp(1, 256));
+        let scale = Vec3::new(
+            dims[0] as f32 / extent.x.max(f32::MIN_POSITIVE),
+            dims[1] as f32 / extent.y.max(f32::MIN_POSITIVE),
+            dims[2] as f32 / extent.z.max(f32::MIN_POSITIVE),
+        );
+        let cell_size = Vec3::new(
+            extent.x / dims[0] as f32,
+            extent.y / dims[1] as f32,
+            extent.z / dims[2] as f32,
+        );
+        let mut start = Vec::with_capacity((dims[0] * dims[1] * dims[2]) as usize);
+        for k in 0..dims[2] {
+            for j in 0..dims[1] {
+                for i in 0..dims[0] {
+                    // The cell's box, widened by a hundredth of a cell: a point that rounding
+                    // puts in this cell (`start_node`) lies within it.
+                    let c = Vec3::new(i as f32, j as f32, k as f32);
+                    let min = lo + (c - 0.01) * cell_size;
+                    let max = lo + (c + 1.01) * cell_size;
+                    start.push(deepest_common_node(nodes, min, max));
+                }
+            }
+        }
+        EntryGrid {
+            lo,
+            scale,
+            dims,
+            start,
+        }
+    }
+
+    /// The node a lookup at `x` may start its descent from (the root outside the grid).
+    #[inline]
+    fn start_node(&self, x: Vec3) -> usize {
+        if self.start.is_empty() {
+            return 0;
+        }
+        let c = (x - self.lo) * self.scale;
+        let d = self.dims;
+        // `as u32` takes a negative or NaN coordinate to 0: the bounds checks below are
+        // against the unconverted values.
+        let inside = c.x >= 0.0
+            && c.y >= 0.0
+            && c.z >= 0.0
+            && c.x < d[0] as f32
+            && c.y < d[1] as f32
+            && c.z < d[2] as f32;
+        if !inside {
+            return 0;
+        }
+        let (i, j, k) = (
+            (c.x as u32).min(d[0] - 1),
+            (c.y as u32).min(d[1] - 1),
+            (c.z as u32).min(d[2] - 1),
+        );
+        self.start[((k * d[1] + j) * d[0] + i) as usize] as usize
+    }
+}
+
+/// The deepest node of the tree that the descent of every point in the box `[min, max]`
+/// passes through.
+fn deepest_common_node(nodes: &[PackedNode], min: Vec3, max: Vec3) -> u32 {
+    let mut i = 0usize;
+    loop {
+        let (axis, index) = nodes[i].decode();
+        if axis == LEAF {
+            return i as u32;
+        }
+        let split = nodes[i].split;
+        i = if max[axis as usize] < split {
+            i + 1
+        } else if min[axis as usize] >= split {
+            index as usize
+        } else {
+            return i as u32;
+        };
     }
 }
 
@@ -489,8 +642,10 @@ mod tests {
         assert_eq!(sequential.jobs, parallel.jobs);
         let cache = GuideCache {
             nodes: parallel.nodes,
+            entry: EntryGrid::default(),
             leaves: parallel.leaves,
             regions: Vec::new(),
+            summaries: Vec::new(),
             stats: CacheStats::default(),
         };
         for s in seeds.iter().step_by(97) {
@@ -503,6 +658,79 @@ mod tests {
                 "the region of a seed's own normal bucket"
             );
             assert!(job.centre.distance(s.position) <= job.radius + 1e-5);
+        }
+    }
+
+    /// A lookup that starts where the entry grid says finds the region the descent from
+    /// the root finds: at the seeds (which lie on the splits: each split is a median
+    /// seed's coordinate), at random points, on the grid's cell boundaries and outside the
+    /// seeds' box.
+    #[test]
+    fn the_entry_grid_finds_what_the_root_finds() {
+        let mut rng = Rng::new(9, 0, 0);
+        // Clustered seeds (two dense blobs and a sparse background) so that the tree's
+        // leaves differ in size, as a scene's do.
+        let seeds: Vec<Seed> = (0..40_000)
+            .map(|i| {
+                let u = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
+                let position = match i % 3 {
+                    0 => Vec3::new(0.5, 0.2, 0.1) + 0.1 * u,
+                    1 => Vec3::new(3.0, 1.5, 2.0) + 0.3 * u,
+                    _ => Vec3::new(-1.0, 0.0, -2.0) + Vec3::new(5.0, 2.0, 5.0) * u,
+                };
+                Seed {
+                    position,
+                    normal: SIGNED_AXES[i % 6],
+                }
+            })
+            .collect();
+        let tree = || {
+            let mut s = seeds.clone();
+            split(&mut s, 64, 0.25, usize::MAX)
+        };
+        let cache = |t: Subtree, entry: bool| {
+            let (lo, hi) = crate::math::bounds(seeds.iter().map(|s| s.position));
+            GuideCache {
+                entry: if entry {
+                    EntryGrid::build(&t.nodes, lo, hi, t.leaves.len())
+                } else {
+                    EntryGrid::default()
+                },
+                nodes: t.nodes,
+                leaves: t.leaves,
+                regions: Vec::new(),
+                summaries: Vec::new(),
+                stats: CacheStats::default(),
+            }
+        };
+        let (from_root, from_grid) = (cache(tree(), false), cache(tree(), true));
+        let grid = &from_grid.entry;
+        assert!(grid.start.len() > 1000, "{} cells", grid.start.len());
+        let skipped = grid.start.iter().filter(|&&n| n > 0).count();
+        assert!(
+            skipped * 2 > grid.start.len(),
+            "most cells start below the root"
+        );
+        let mut points: Vec<Vec3> = seeds.iter().map(|s| s.position).collect();
+        for _ in 0..20_000 {
+            let u = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
+            points.push(Vec3::new(-1.5, -0.5, -2.5) + Vec3::new(6.0, 3.0, 6.0) * u);
+        }
+        for k in 0..=grid.dims[0] {
+            let x = grid.lo.x + k as f32 / grid.scale.x;
+            points.push(Vec3::new(x, 0.7, 0.3));
+            points.push(Vec3::new(x.next_down(), 0.7, 0.3));
+        }
+        points.push(Vec3::NAN);
+        points.push(Vec3::splat(f32::INFINITY));
+        for p in points {
+            for n in SIGNED_AXES {
+                assert_eq!(
+                    from_grid.lookup_index(p, n),
+                    from_root.lookup_index(p, n),
+                    "at {p} facing {n}"
+                );
+            }
         }
     }
 }

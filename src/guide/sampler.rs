@@ -301,28 +301,34 @@ impl<'a> GuidedSampler<'a> {
         match &self.source {
             GuideSource::Bsdf => {}
             GuideSource::Cached(cache) => {
-                if let Some((i, dist)) = cache
+                // The region's summary first: a region without a distribution, or one that
+                // learned BSDF sampling alone, is decided without touching its `Region`.
+                if let Some((i, summary)) = cache
                     .lookup_index(at.p, at.side_normal())
-                    .and_then(|i| Some((i, cache.regions()[i as usize].distribution.as_ref()?)))
+                    .map(|i| (i, cache.summary(i)))
+                    .filter(|(_, s)| s.guides)
                 {
                     let p_bsdf = self.p_bsdf_in(i);
                     if p_bsdf >= 1.0 {
                         // A region that learned BSDF sampling alone (`selection`, "Guiding
                         // where it pays for its time"): its estimate still steers Russian
                         // roulette, but its distribution is not read. Not a fallback.
-                        state.density = cache.regions()[i as usize].density;
+                        state.density = summary.density;
                         state.p_bsdf = p_bsdf;
                         return;
                     }
-                    state.mix = ChannelMix::new(at.channel_factor(), dist.get().channel_totals());
-                    if state.mix.is_some() {
-                        if let RegionDistribution::Raster(g) = dist {
-                            g.prefetch();
+                    if let Some(dist) = cache.regions()[i as usize].distribution.as_ref() {
+                        state.mix =
+                            ChannelMix::new(at.channel_factor(), dist.get().channel_totals());
+                        if state.mix.is_some() {
+                            if let RegionDistribution::Raster(g) = dist {
+                                g.prefetch();
+                            }
+                            state.prepared = Prepared::Region(dist);
+                            state.region = Some(i);
+                            state.density = summary.density;
+                            state.p_bsdf = p_bsdf;
                         }
-                        state.prepared = Prepared::Region(dist);
-                        state.region = Some(i);
-                        state.density = cache.regions()[i as usize].density;
-                        state.p_bsdf = p_bsdf;
                     }
                 }
             }
