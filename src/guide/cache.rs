@@ -232,6 +232,7 @@ impl GuideCache {
         let entry = EntryGrid::build(&nodes, lo, hi, leaves.len());
         let heap_bytes = nodes.capacity() * std::mem::size_of::<PackedNode>()
             + entry.start.capacity() * 4
+            + regions.len() * std::mem::size_of::<RegionSummary>()
             + leaves.capacity() * std::mem::size_of::<[u32; 6]>()
             + regions.capacity() * std::mem::size_of::<Region>()
             + guiding
@@ -315,7 +316,8 @@ impl GuideCache {
 #[derive(Default)]
 struct EntryGrid {
     lo: Vec3,
-    /// Cells per unit length along each axis.
+    /// Cells per unit length along each axis (of the grid's box: the seeds' box, each side at
+    /// least [`ENTRY_MIN_THICKNESS`] of the longest).
     scale: Vec3,
     dims: [u32; 3],
     start: Vec<u32>,
@@ -328,30 +330,42 @@ const ENTRY_CELLS_PER_LEAF: usize = 4;
 /// At most this many cells (1 MB).
 const ENTRY_MAX_CELLS: usize = 1 << 18;
 
+/// The grid's box is at least this thick along every axis, as a share of its longest side:
+/// seeds all on one plane (or one line) still get a box of normal floats around them.
+const ENTRY_MIN_THICKNESS: f32 = 1e-3;
+
 impl EntryGrid {
     fn build(nodes: &[PackedNode], lo: Vec3, hi: Vec3, leaves: usize) -> Self {
-        let extent = hi - lo;
-        if nodes.is_empty() || !extent.is_finite() || !(extent.max_element() > 0.0) {
+        let longest = (hi - lo).max_element();
+        // A single leaf needs no grid; a box too small (or too large) for its cells' sizes
+        // to be normal floats gets none either: every lookup then starts at the root.
+        if nodes.len() < 2 || !(1e-30..=1e30).contains(&longest) || !lo.is_finite() {
             return EntryGrid::default();
         }
-        // Cells as near to cubes as the box allows, about `ENTRY_CELLS_PER_LEAF` per leaf;
-        // a flat axis (all seeds on one plane) gets one cell.
+        // The box the grid covers: the seeds' box, each side at least
+        // `ENTRY_MIN_THICKNESS` of the longest (a flat axis gets a thin slab of cells).
+        let extent = (hi - lo).max(Vec3::splat(longest * ENTRY_MIN_THICKNESS));
+        // Cells as near to cubes as the box allows, about `ENTRY_CELLS_PER_LEAF` per leaf,
+        // at most `ENTRY_MAX_CELLS` (an axis cut in half until they fit, after rounding).
         let cells = (leaves * ENTRY_CELLS_PER_LEAF).clamp(1, ENTRY_MAX_CELLS) as f32;
-        let positive = extent
+        let side = ((extent.x / longest) * (extent.y / longest) * (extent.z / longest) / cells)
+            .cbrt()
+            * longest;
+        if !(side > 0.0) || !side.is_finite() {
+            return EntryGrid::default();
+        }
+        let mut dims = extent
             .to_array()
-            .map(|e| e.max(extent.max_element() * 1e-3));
-        let side = (positive.iter().product::<f32>() / cells).cbrt();
-        let dims = positive.map(|e| ((e / side).round() as u32).clamp(1, 256));
-        let scale = Vec3::new(
-            dims[0] as f32 / extent.x.max(f32::MIN_POSITIVE),
-            dims[1] as f32 / extent.y.max(f32::MIN_POSITIVE),
-            dims[2] as f32 / extent.z.max(f32::MIN_POSITIVE),
-        );
-        let cell_size = Vec3::new(
-            extent.x / dims[0] as f32,
-            extent.y / dims[1] as f32,
-            extent.z / dims[2] as f32,
-        );
+            .map(|e| ((e / side).round() as u32).clamp(1, 256));
+        while dims.iter().map(|&d| d as usize).product::<usize>() > ENTRY_MAX_CELLS {
+            let widest = (0..3).max_by_key(|&a| dims[a]).unwrap_or(0);
+            dims[widest] = dims[widest].div_ceil(2);
+        }
+        let dims_f = Vec3::new(dims[0] as f32, dims[1] as f32, dims[2] as f32);
+        // The cells' size and its inverse from the same box, so that `start_node`'s cell of
+        // a point and the cell boxes below agree to rounding.
+        let cell_size = extent / dims_f;
+        let scale = dims_f / extent;
         let mut start = Vec::with_capacity((dims[0] * dims[1] * dims[2]) as usize);
         for k in 0..dims[2] {
             for j in 0..dims[1] {
@@ -661,32 +675,19 @@ mod tests {
         }
     }
 
-    /// A lookup that starts where the entry grid says finds the region the descent from
-    /// the root finds: at the seeds (which lie on the splits: each split is a median
-    /// seed's coordinate), at random points, on the grid's cell boundaries and outside the
-    /// seeds' box.
-    #[test]
-    fn the_entry_grid_finds_what_the_root_finds() {
-        let mut rng = Rng::new(9, 0, 0);
-        // Clustered seeds (two dense blobs and a sparse background) so that the tree's
-        // leaves differ in size, as a scene's do.
-        let seeds: Vec<Seed> = (0..40_000)
-            .map(|i| {
-                let u = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
-                let position = match i % 3 {
-                    0 => Vec3::new(0.5, 0.2, 0.1) + 0.1 * u,
-                    1 => Vec3::new(3.0, 1.5, 2.0) + 0.3 * u,
-                    _ => Vec3::new(-1.0, 0.0, -2.0) + Vec3::new(5.0, 2.0, 5.0) * u,
-                };
-                Seed {
-                    position,
-                    normal: SIGNED_AXES[i % 6],
-                }
-            })
-            .collect();
+    /// Builds the tree over `seeds` twice, with and without the entry grid, and checks that
+    /// both find the same region at the seeds, at `points`, on every cell boundary of the
+    /// grid along each axis (and one float below it), at NaN and at infinity. Returns the
+    /// grid.
+    fn entry_grid_agrees(
+        seeds: &[Seed],
+        max_seeds: usize,
+        max_extent: f32,
+        points: &[Vec3],
+    ) -> EntryGrid {
         let tree = || {
-            let mut s = seeds.clone();
-            split(&mut s, 64, 0.25, usize::MAX)
+            let mut s = seeds.to_vec();
+            split(&mut s, max_seeds, max_extent, usize::MAX)
         };
         let cache = |t: Subtree, entry: bool| {
             let (lo, hi) = crate::math::bounds(seeds.iter().map(|s| s.position));
@@ -703,27 +704,32 @@ mod tests {
                 stats: CacheStats::default(),
             }
         };
-        let (from_root, from_grid) = (cache(tree(), false), cache(tree(), true));
-        let grid = &from_grid.entry;
-        assert!(grid.start.len() > 1000, "{} cells", grid.start.len());
-        let skipped = grid.start.iter().filter(|&&n| n > 0).count();
+        let (from_root, mut from_grid) = (cache(tree(), false), cache(tree(), true));
+        let grid = std::mem::take(&mut from_grid.entry);
         assert!(
-            skipped * 2 > grid.start.len(),
-            "most cells start below the root"
+            grid.start.len() <= ENTRY_MAX_CELLS,
+            "{} cells",
+            grid.start.len()
         );
-        let mut points: Vec<Vec3> = seeds.iter().map(|s| s.position).collect();
-        for _ in 0..20_000 {
-            let u = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
-            points.push(Vec3::new(-1.5, -0.5, -2.5) + Vec3::new(6.0, 3.0, 6.0) * u);
+        let mut at: Vec<Vec3> = seeds.iter().map(|s| s.position).collect();
+        at.extend_from_slice(points);
+        if !grid.start.is_empty() {
+            let (centre, first) = (at[0], grid.lo);
+            for axis in 0..3 {
+                for k in 0..=grid.dims[axis] {
+                    let edge = first[axis] + k as f32 / grid.scale[axis];
+                    for v in [edge, edge.next_down(), edge.next_up()] {
+                        let mut p = centre;
+                        p[axis] = v;
+                        at.push(p);
+                    }
+                }
+            }
         }
-        for k in 0..=grid.dims[0] {
-            let x = grid.lo.x + k as f32 / grid.scale.x;
-            points.push(Vec3::new(x, 0.7, 0.3));
-            points.push(Vec3::new(x.next_down(), 0.7, 0.3));
-        }
-        points.push(Vec3::NAN);
-        points.push(Vec3::splat(f32::INFINITY));
-        for p in points {
+        at.push(Vec3::NAN);
+        at.push(Vec3::splat(f32::INFINITY));
+        from_grid.entry = grid;
+        for p in at {
             for n in SIGNED_AXES {
                 assert_eq!(
                     from_grid.lookup_index(p, n),
@@ -732,5 +738,104 @@ mod tests {
                 );
             }
         }
+        from_grid.entry
+    }
+
+    /// A lookup that starts where the entry grid says finds the region the descent from
+    /// the root finds, at random points inside and around clustered seeds, and the grid
+    /// skips the tree's top for most cells.
+    #[test]
+    fn the_entry_grid_finds_what_the_root_finds() {
+        let mut rng = Rng::new(9, 0, 0);
+        // Two dense blobs and a sparse background, so that the tree's leaves differ in
+        // size, as a scene's do.
+        let seeds: Vec<Seed> = (0..40_000)
+            .map(|i| {
+                let u = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
+                let position = match i % 3 {
+                    0 => Vec3::new(0.5, 0.2, 0.1) + 0.1 * u,
+                    1 => Vec3::new(3.0, 1.5, 2.0) + 0.3 * u,
+                    _ => Vec3::new(-1.0, 0.0, -2.0) + Vec3::new(5.0, 2.0, 5.0) * u,
+                };
+                Seed {
+                    position,
+                    normal: SIGNED_AXES[i % 6],
+                }
+            })
+            .collect();
+        let points: Vec<Vec3> = (0..20_000)
+            .map(|_| {
+                let u = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
+                Vec3::new(-1.5, -0.5, -2.5) + Vec3::new(6.0, 3.0, 6.0) * u
+            })
+            .collect();
+        let grid = entry_grid_agrees(&seeds, 64, 0.25, &points);
+        assert!(grid.start.len() > 1000, "{} cells", grid.start.len());
+        let skipped = grid.start.iter().filter(|&&n| n > 0).count();
+        assert!(
+            skipped * 2 > grid.start.len(),
+            "most cells start below the root"
+        );
+    }
+
+    /// Seeds on a plane, on a line, in a box of 1e-25, in one too small for its cells to
+    /// be normal floats, and a set whose extent along one axis is subnormal: the grid stays within its cell budget and finds
+    /// what the root finds (or is left out and every lookup starts at the root).
+    #[test]
+    fn the_entry_grid_of_flat_and_tiny_seed_sets() {
+        let mut rng = Rng::new(10, 0, 0);
+        let mut u = || rng.uniform();
+        let seed = |position: Vec3, i: usize| Seed {
+            position,
+            normal: SIGNED_AXES[i % 6],
+        };
+        let plane: Vec<Seed> = (0..20_000)
+            .map(|i| seed(Vec3::new(u(), u(), 0.0), i))
+            .collect();
+        let line: Vec<Seed> = (0..20_000)
+            .map(|i| seed(Vec3::new(3.0 * u(), 0.0, 0.0), i))
+            .collect();
+        let small: Vec<Seed> = (0..2_000)
+            .map(|i| seed(Vec3::splat(1e-20) + 1e-25 * Vec3::new(u(), u(), u()), i))
+            .collect();
+        let tiny: Vec<Seed> = (0..2_000)
+            .map(|i| seed(1e-35 * Vec3::new(u(), u(), u()), i))
+            .collect();
+        let mut subnormal: Vec<Seed> = (0..1_500)
+            .map(|i| seed(Vec3::new(0.01 + 0.99 * i as f32 / 1500.0, 0.0, 0.0), i))
+            .collect();
+        subnormal.push(seed(Vec3::ZERO, 0));
+        subnormal.push(seed(Vec3::new(0.0, 1e-39, 0.0), 0));
+        let near = |set: &[Seed], spread: f32| -> Vec<Vec3> {
+            let mut rng = Rng::new(11, 0, 0);
+            set.iter()
+                .step_by(7)
+                .map(|s| {
+                    let d = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) - 0.5;
+                    s.position + spread * d
+                })
+                .collect()
+        };
+        let g = entry_grid_agrees(&plane, 16, 0.05, &near(&plane, 0.01));
+        assert!(
+            g.start.len() > 100,
+            "a plane's grid: {} cells",
+            g.start.len()
+        );
+        let g = entry_grid_agrees(&line, 16, 0.05, &near(&line, 0.01));
+        assert!(
+            g.start.len() > 100,
+            "a line's grid: {} cells",
+            g.start.len()
+        );
+        let g = entry_grid_agrees(&small, 16, 1e-27, &near(&small, 1e-26));
+        assert!(
+            g.start.len() > 10,
+            "a box of 1e-25: {} cells",
+            g.start.len()
+        );
+        let g = entry_grid_agrees(&tiny, 16, 1e-37, &near(&tiny, 1e-36));
+        assert!(g.start.is_empty(), "no grid over a box of 1e-35");
+        entry_grid_agrees(&subnormal, 1, 0.05, &near(&subnormal, 1e-39));
     }
 }
