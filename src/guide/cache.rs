@@ -677,7 +677,7 @@ mod tests {
 
     /// Builds the tree over `seeds` twice, with and without the entry grid, and checks that
     /// both find the same region at the seeds, at `points`, on every cell boundary of the
-    /// grid along each axis (and one float below it), at NaN and at infinity. Returns the
+    /// grid along each axis (and one float either side), at NaN and at infinity. Returns the
     /// grid.
     fn entry_grid_agrees(
         seeds: &[Seed],
@@ -779,8 +779,9 @@ mod tests {
     }
 
     /// Seeds on a plane, on a line, in a box of 1e-25, in one too small for its cells to
-    /// be normal floats, and a set whose extent along one axis is subnormal: the grid stays within its cell budget and finds
-    /// what the root finds (or is left out and every lookup starts at the root).
+    /// be normal floats, and a set whose extent along one axis is subnormal: the grid stays
+    /// within its cell budget and finds what the root finds (or is left out and every
+    /// lookup starts at the root).
     #[test]
     fn the_entry_grid_of_flat_and_tiny_seed_sets() {
         let mut rng = Rng::new(10, 0, 0);
