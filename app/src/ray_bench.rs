@@ -15,7 +15,7 @@
 use footprint::rng::Rng;
 use footprint::sampling::sample_cosine_hemisphere;
 use footprint::scene::Scene;
-use footprint::scene::accel::{Accel, Backend};
+use footprint::scene::accel::{Accel, Backend, Toward};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -66,7 +66,7 @@ fn trace(accel: &Accel, rays: &[Ray], shadow: bool) -> f64 {
                 .iter()
                 .filter(|(o, d, t)| {
                     if shadow {
-                        !accel.unoccluded(*o, *d, *t)
+                        !accel.unoccluded(Toward::Light, *o, *d, *t)
                     } else {
                         accel.intersect(*o, *d, *t).is_some()
                     }
@@ -95,8 +95,22 @@ pub fn run(scenes: &[(String, Scene)], seconds: f64) -> anyhow::Result<()> {
         "scene", "rays", "threads", "CWBVH", "Embree", "ratio"
     );
     for (name, scene) in scenes {
-        let mut accels =
-            vec![Accel::build_with(&scene.triangles, Backend::Cwbvh).map_err(anyhow::Error::msg)?];
+        let mut cwbvh =
+            Accel::build_with(&scene.triangles, Backend::Cwbvh).map_err(anyhow::Error::msg)?;
+        // The order the scene's own CWBVH chose for its shadow rays.
+        for toward in [Toward::Light, Toward::Camera] {
+            let segments = scene.probe_shadow_segments(toward);
+            if let Some((order, visits)) = cwbvh.choose_shadow_order(toward, &segments) {
+                println!(
+                    "{name}: shadow rays toward {}: {} (nodes and triangles tested per probe ray: near first {:.2}, RTSAH {:.2})",
+                    toward.describe(),
+                    order.describe(),
+                    visits[0],
+                    visits[1]
+                );
+            }
+        }
+        let mut accels = vec![cwbvh];
         match Accel::build_with(&scene.triangles, Backend::Embree) {
             Ok(a) => accels.push(a),
             Err(e) => println!("{name}: the CWBVH only ({e})"),

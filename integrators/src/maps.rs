@@ -14,7 +14,7 @@ use crate::skips::Skip;
 use footprint::guide::cache::{CacheStats, GuideCache, Seed};
 use footprint::guide::particle_map::{MapKind, ParticleInput, ParticleMap};
 use footprint::guide::sampler::{GuideSource, GuidedSampler};
-use footprint::scene::Scene;
+use footprint::scene::{Scene, Toward};
 use footprint::settings::GuideParams;
 use footprint::settings::MAX_MAP_PATHS;
 use glam::Vec2;
@@ -282,7 +282,14 @@ pub fn seen_fraction(scene: &Scene, particles: &[ParticleInput]) -> f64 {
                 return false;
             };
             scene
-                .transmittance(p.position, p.normal, c.lens, None, SEEN_THROUGH_SHEETS)
+                .transmittance(
+                    Toward::Camera,
+                    p.position,
+                    p.normal,
+                    c.lens,
+                    None,
+                    SEEN_THROUGH_SHEETS,
+                )
                 .0
                 .max_element()
                 > 0.0

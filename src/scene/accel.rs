@@ -10,6 +10,7 @@
 
 use crate::keyword::Keyword;
 use crate::scene::bvh::{Bvh, BvhHit};
+pub use crate::scene::bvh::{ShadowOrder, Toward};
 use crate::scene::embree::{self, EmbreeBvh};
 use crate::scene::geometry::TriangleGeom;
 use glam::Vec3;
@@ -114,12 +115,36 @@ impl Accel {
         }
     }
 
-    /// True when nothing blocks `origin + t dir` for `0 < t < t_max` (shadow rays).
+    /// True when nothing blocks `origin + t dir` for `0 < t < t_max` (shadow rays
+    /// `toward` a light or the camera: the CWBVH may visit nodes in another order for
+    /// each, [`Accel::choose_shadow_order`]).
     #[inline]
-    pub fn unoccluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
+    pub fn unoccluded(&self, toward: Toward, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
         match self {
             Accel::Embree(b) => b.unoccluded(origin, dir, t_max),
-            Accel::Cwbvh(b) => b.unoccluded(origin, dir, t_max),
+            Accel::Cwbvh(b) => b.unoccluded(toward, origin, dir, t_max),
+        }
+    }
+
+    /// Lets the CWBVH choose the order in which its shadow rays `toward` a light or the
+    /// camera visit nodes, from `segments`, a sample of such rays
+    /// ([`Bvh::choose_shadow_order`]); Embree keeps its own. The choice and the nodes and
+    /// triangles tested per segment each way, or `None`.
+    pub fn choose_shadow_order(
+        &mut self,
+        toward: Toward,
+        segments: &[(Vec3, Vec3, f32)],
+    ) -> Option<(ShadowOrder, [f64; 2])> {
+        match self {
+            Accel::Embree(_) => None,
+            Accel::Cwbvh(b) => Some(b.choose_shadow_order(toward, segments)),
+        }
+    }
+
+    /// Frees what the chosen shadow-ray orders do not use ([`Bvh::release_unused_shadow_nodes`]).
+    pub fn release_unused_shadow_nodes(&mut self) {
+        if let Accel::Cwbvh(b) = self {
+            b.release_unused_shadow_nodes();
         }
     }
 }

@@ -24,6 +24,52 @@ use obvhs::triangle::Triangle as BvhTriangle;
 use obvhs::{BvhBuildParams, cwbvh::builder::build_cwbvh_from_tris};
 use std::time::Duration;
 
+/// The order in which a shadow ray visits a node's children.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShadowOrder {
+    /// Near to far from the ray's origin (the closest-hit order).
+    NearFirst,
+    /// By each child's chance of blocking over its cost, the same for every ray
+    /// ([`shadow_order`](crate::scene::shadow_order)).
+    Rtsah,
+}
+
+/// Where a shadow ray ends: the two kinds of shadow rays block in different places (a
+/// light inside a lamp's shade is hidden near the light; the camera stands in the open), so
+/// each kind has its own [`ShadowOrder`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Toward {
+    /// Next-event estimation: from a surface to a point on a light.
+    Light,
+    /// A connection to the camera (light tracing, the importance map's particles).
+    Camera,
+}
+
+impl Toward {
+    /// How the kind reads in a report.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Toward::Light => "a light",
+            Toward::Camera => "the camera",
+        }
+    }
+}
+
+impl ShadowOrder {
+    /// How the order reads in a report.
+    pub fn describe(self) -> &'static str {
+        match self {
+            ShadowOrder::NearFirst => "near first",
+            ShadowOrder::Rtsah => "by blocking chance (RTSAH)",
+        }
+    }
+}
+
+/// Shadow rays take the RTSAH order only when it tests fewer than this fraction of the
+/// nodes and triangles near first tests: its nodes are a copy that closest-hit rays do not
+/// keep in the cache, so a saving within the probes' noise is not worth them.
+pub const RTSAH_MARGIN: f64 = 0.9;
+
 /// A closest hit: the original triangle index, distance and barycentrics.
 #[derive(Clone, Copy, Debug)]
 pub struct BvhHit {
@@ -168,6 +214,11 @@ fn child_hits(node: &CwBvhNode, ray: &BvhRay, oct_inv4: u32) -> u32 {
 
 pub struct Bvh {
     bvh: CwBvh,
+    /// The nodes as shadow rays visit them in [`ShadowOrder::Rtsah`] (`shadow_order`);
+    /// empty when neither kind of shadow ray takes that order.
+    shadow_nodes: Vec<CwBvhNode>,
+    /// The order [`Bvh::unoccluded`] takes, by [`Toward`].
+    shadow_orders: [ShadowOrder; 2],
     /// `ordered[i]` is triangle `original[i]`, in the BVH's primitive order.
     ordered: Vec<TriangleGeom>,
     original: Vec<u32>,
@@ -191,9 +242,14 @@ impl Bvh {
             &mut Duration::default(),
         );
         let original: Vec<u32> = bvh.primitive_indices.clone();
-        let ordered = original.iter().map(|&i| triangles[i as usize]).collect();
+        let ordered: Vec<TriangleGeom> = original.iter().map(|&i| triangles[i as usize]).collect();
+        let shadow_nodes = crate::scene::shadow_order::shadow_nodes(&bvh.nodes, |p| {
+            0.5 * ordered[p].cross().length()
+        });
         Bvh {
             bvh,
+            shadow_nodes,
+            shadow_orders: [ShadowOrder::NearFirst; 2],
             ordered,
             original,
         }
@@ -231,20 +287,109 @@ impl Bvh {
         })
     }
 
-    /// True when nothing blocks `origin + t dir` for `0 < t < t_max` (shadow rays).
+    /// True when nothing blocks `origin + t dir` for `0 < t < t_max` (a shadow ray
+    /// `toward` a light or the camera), in the order [`Bvh::choose_shadow_order`] chose for
+    /// it (near first until then). The answer is the same in either order; only the work
+    /// differs.
     #[inline]
-    pub fn unoccluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
+    pub fn unoccluded(&self, toward: Toward, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
+        match self.shadow_orders[toward as usize] {
+            ShadowOrder::NearFirst => self.shadow_query::<false>(origin, dir, t_max).0,
+            ShadowOrder::Rtsah => self.shadow_query::<true>(origin, dir, t_max).0,
+        }
+    }
+
+    /// Chooses the order of [`Bvh::unoccluded`] for shadow rays `toward` a light or the
+    /// camera: the one that tests fewer nodes and triangles over `segments` (origin,
+    /// direction, length: a sample of the scene's shadow rays of that kind), near first on a
+    /// tie or a saving under [`RTSAH_MARGIN`]. Returns the choice and the nodes and
+    /// triangles tested per segment in each order (near first, RTSAH).
+    pub fn choose_shadow_order(
+        &mut self,
+        toward: Toward,
+        segments: &[(Vec3, Vec3, f32)],
+    ) -> (ShadowOrder, [f64; 2]) {
+        let mut visits = [0u64; 2];
+        for &(o, d, t) in segments {
+            visits[0] += self.unoccluded_in(ShadowOrder::NearFirst, o, d, t).1 as u64;
+            visits[1] += self.unoccluded_in(ShadowOrder::Rtsah, o, d, t).1 as u64;
+        }
+        let order = if (visits[1] as f64) < RTSAH_MARGIN * visits[0] as f64 {
+            ShadowOrder::Rtsah
+        } else {
+            ShadowOrder::NearFirst
+        };
+        self.shadow_orders[toward as usize] = order;
+        let n = segments.len().max(1) as f64;
+        (order, [visits[0] as f64 / n, visits[1] as f64 / n])
+    }
+
+    /// Frees the RTSAH copy of the nodes when neither kind of shadow ray takes that order
+    /// (call after [`Bvh::choose_shadow_order`] for both kinds); [`Bvh::unoccluded_in`]
+    /// then takes near first for either order.
+    pub fn release_unused_shadow_nodes(&mut self) {
+        if !self.shadow_orders.contains(&ShadowOrder::Rtsah) {
+            self.shadow_nodes = Vec::new();
+        }
+    }
+
+    /// The order shadow rays `toward` a light or the camera take.
+    pub fn shadow_order(&self, toward: Toward) -> ShadowOrder {
+        self.shadow_orders[toward as usize]
+    }
+
+    /// [`Bvh::unoccluded`] in the given order, and the nodes and triangles it tested.
+    #[inline]
+    pub fn unoccluded_in(
+        &self,
+        order: ShadowOrder,
+        origin: Vec3,
+        dir: Vec3,
+        t_max: f32,
+    ) -> (bool, u32) {
+        match order {
+            ShadowOrder::Rtsah if !self.shadow_nodes.is_empty() => {
+                self.shadow_query::<true>(origin, dir, t_max)
+            }
+            _ => self.shadow_query::<false>(origin, dir, t_max),
+        }
+    }
+
+    /// The shadow-ray traversal over the closest-hit nodes (near first) or over the RTSAH
+    /// copy, and the nodes and triangles it tested.
+    #[inline(always)]
+    fn shadow_query<const RTSAH: bool>(&self, origin: Vec3, dir: Vec3, t_max: f32) -> (bool, u32) {
         let (start, dir, ray) = query_ray(origin, dir, t_max);
+        // What obvhs' traversal reads of a `CwBvh`: its `nodes`.
+        struct Nodes<'a> {
+            nodes: &'a [CwBvhNode],
+        }
+        let nodes = Nodes {
+            nodes: if RTSAH {
+                &self.shadow_nodes
+            } else {
+                &self.bvh.nodes
+            },
+        };
         let mut state = self.bvh.new_traversal(ray.direction);
+        if RTSAH {
+            // Slots from the highest down, whatever the ray's octant.
+            state.oct_inv4 = 0;
+        }
         let mut node: &CwBvhNode;
         let mut clear = true;
+        let mut visits = 0u32;
         'traversal: {
             obvhs::traverse!(
-                self.bvh,
+                nodes,
                 node,
                 state,
-                child_hits(node, &ray, state.oct_inv4),
                 {
+                    visits += 1;
+                    child_hits(node, &ray, state.oct_inv4)
+                },
+                {
+                    visits += 1;
                     if self.ordered[state.primitive_id as usize]
                         .intersect_range(start, dir, ORIGIN_BACKOFF, ray.tmax)
                         .is_some()
@@ -255,16 +400,16 @@ impl Bvh {
                 }
             );
         }
-        clear
+        (clear, visits)
     }
 
     pub fn node_count(&self) -> usize {
         self.bvh.nodes.len()
     }
 
-    /// Bytes held by the nodes, the reordered triangles and the index map.
+    /// Bytes held by the nodes (both orders'), the reordered triangles and the index map.
     pub fn memory_bytes(&self) -> usize {
-        self.bvh.nodes.len() * std::mem::size_of_val(&self.bvh.nodes[0])
+        (self.bvh.nodes.len() + self.shadow_nodes.len()) * std::mem::size_of::<CwBvhNode>()
             + self.ordered.len() * std::mem::size_of::<TriangleGeom>()
             + self.original.len() * 4
             + self.bvh.primitive_indices.len() * 4
@@ -319,5 +464,85 @@ mod tests {
             entered > 1000,
             "too few nodes entered ({entered}) to test anything"
         );
+    }
+
+    /// The leaves under node `i` of `nodes`: each leaf child's world box and its first
+    /// primitive and count; asserts that each inner child's node starts (its box's corner
+    /// `p`) inside the box its slot gives it, so that a slot cannot point at another
+    /// child's node.
+    fn leaves(nodes: &[CwBvhNode], i: usize, out: &mut Vec<([u32; 6], u32, u32)>) {
+        let node = &nodes[i];
+        for s in 0..8 {
+            let meta = node.child_meta[s];
+            if meta == 0 {
+                continue;
+            }
+            if node.imask & (1 << s) != 0 {
+                let child = node.child_base_idx as usize
+                    + (node.imask as u32 & ((1u32 << s) - 1)).count_ones() as usize;
+                let b = node.child_aabb(s);
+                let corner = Vec3A::from(nodes[child].p);
+                let tol = 1e-5 * (1.0 + corner.abs().max_element());
+                assert!(
+                    (b.min - tol).cmple(corner).all() && corner.cmple(b.max + tol).all(),
+                    "node {i} slot {s}: child node at {corner} outside {b:?}"
+                );
+                leaves(nodes, child, out);
+            } else {
+                let b = node.child_aabb(s);
+                let bits = [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z].map(f32::to_bits);
+                out.push((
+                    bits,
+                    node.primitive_base_idx + (meta & 0x1f) as u32,
+                    (meta >> 5).count_ones(),
+                ));
+            }
+        }
+    }
+
+    /// The shadow rays' copy of the nodes is the same tree with each node's children in
+    /// another order: the same leaves (boxes and triangles) under the root, each inner
+    /// slot pointing at its own child's node, leaves in the lowest slots and inner children
+    /// above them in every node (a soup of 3000 triangles of mixed sizes, so that nodes mix
+    /// leaves and inner children).
+    #[test]
+    fn the_shadow_copy_holds_the_same_tree() {
+        let mut rng = Rng::new(32, 0, 0);
+        let p = |rng: &mut Rng| Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
+        let tris: Vec<TriangleGeom> = (0..3000)
+            .map(|i| {
+                let c = p(&mut rng) * 10.0;
+                let size = if i % 10 == 0 { 4.0 } else { 0.3 };
+                TriangleGeom::new(
+                    c,
+                    c + (p(&mut rng) - 0.5) * size,
+                    c + (p(&mut rng) - 0.5) * size,
+                )
+            })
+            .collect();
+        let bvh = Bvh::build(&tris);
+        assert_eq!(bvh.bvh.nodes.len(), bvh.shadow_nodes.len());
+        let (mut a, mut b) = (Vec::new(), Vec::new());
+        leaves(&bvh.bvh.nodes, 0, &mut a);
+        leaves(&bvh.shadow_nodes, 0, &mut b);
+        a.sort_unstable();
+        b.sort_unstable();
+        assert!(a.len() > 500, "{} leaves", a.len());
+        assert_eq!(a, b);
+        let mut reordered = 0;
+        for (i, node) in bvh.shadow_nodes.iter().enumerate() {
+            let used = node.child_meta.iter().filter(|&&m| m != 0).count();
+            let inner = node.imask.count_ones() as usize;
+            // Leaves in slots 0.., inner children in the slots after them, none empty between.
+            assert_eq!(
+                node.imask as usize,
+                ((1usize << inner) - 1) << (used - inner),
+                "node {i}"
+            );
+            assert!(node.child_meta[used..].iter().all(|&m| m == 0), "node {i}");
+            let original = &bvh.bvh.nodes[i];
+            reordered += (node.child_meta != original.child_meta) as usize;
+        }
+        assert!(reordered > 10, "only {reordered} nodes reordered");
     }
 }

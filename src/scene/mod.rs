@@ -15,6 +15,7 @@ pub mod light;
 pub mod load;
 pub mod mitsuba;
 pub mod obj;
+pub mod shadow_order;
 pub mod texture;
 pub mod toml_file;
 
@@ -26,6 +27,7 @@ use crate::features::{Features, General};
 use crate::math::{Frame, Rgb};
 use crate::sampling::Distribution1D;
 use crate::scene::accel::Accel;
+pub use crate::scene::accel::Toward;
 use crate::scene::camera::Camera;
 use crate::scene::effects::Effects;
 use crate::scene::geometry::{
@@ -51,6 +53,9 @@ pub const MAX_COORDINATE: f32 = 1e15;
 /// blocked: a bound on the work of one ray through foliage, far above what a scene's leaves
 /// stack up to (a ray through 1024 layers each letting half through carries 2⁻¹⁰²⁴).
 pub const MAX_CUTOUT_CROSSINGS: u32 = 1024;
+
+/// Camera paths whose shadow rays [`Scene::probe_shadow_segments`] draws.
+pub const SHADOW_PROBES: usize = 2048;
 
 /// Counts reported after loading.
 #[derive(Clone, Debug, Default)]
@@ -275,7 +280,7 @@ impl Scene {
         let light_choice_own_number = light_distribution.min_pmf() < LIGHT_CHOICE_OWN_NUMBER;
         let bvh = Accel::build(&triangles)?;
         let effects = Effects::analyse(&materials, &shading, &lights);
-        Ok(Scene {
+        let mut scene = Scene {
             camera,
             triangles: Arc::from(triangles),
             shading: Arc::from(shading),
@@ -296,7 +301,64 @@ impl Scene {
             import_notes: Vec::new(),
             source_params: String::new(),
             environment_light,
-        })
+        };
+        for toward in [Toward::Light, Toward::Camera] {
+            let segments = scene.probe_shadow_segments(toward);
+            if let Some(bvh) = Arc::get_mut(&mut scene.bvh) {
+                bvh.choose_shadow_order(toward, &segments);
+            }
+        }
+        if let Some(bvh) = Arc::get_mut(&mut scene.bvh) {
+            bvh.release_unused_shadow_nodes();
+        }
+        Ok(scene)
+    }
+
+    /// Shadow rays of the kind `toward` that the scene's renders trace, from the first and
+    /// second surfaces of [`SHADOW_PROBES`] paths: toward a light, from the surfaces camera
+    /// paths meet (through random pixels, then a cosine-weighted bounce) to points drawn on
+    /// the lights as next-event estimation draws them; toward the camera, from the surfaces
+    /// light paths meet (emitted as light tracing emits them, then a cosine-weighted bounce)
+    /// to the lens centre. The CWBVH chooses each kind's traversal order on these
+    /// ([`Accel::choose_shadow_order`]). Fixed seeds: the same scene gives the same segments.
+    pub fn probe_shadow_segments(&self, toward: Toward) -> Vec<(Vec3, Vec3, f32)> {
+        let cam = &self.camera;
+        let size = Vec2::new(cam.width as f32, cam.height as f32);
+        let mut segments = Vec::with_capacity(2 * SHADOW_PROBES);
+        for i in 0..SHADOW_PROBES as u64 {
+            let mut rng = crate::rng::Rng::new(0x5AD0, toward as u64, i);
+            let (mut o, mut d) = match toward {
+                Toward::Light => (cam.position, cam.ray_dir(rng.uniform2() * size)),
+                Toward::Camera => {
+                    let (light, _, _) = self.choose_light(&mut rng);
+                    let Some(e) = self.lights[light].sample_le(rng.uniform2(), rng.uniform2())
+                    else {
+                        continue;
+                    };
+                    (e.p, e.dir)
+                }
+            };
+            for _ in 0..2 {
+                let Some(h) = self.intersect(o, d, f32::INFINITY) else {
+                    break;
+                };
+                let n = if h.ng.dot(d) < 0.0 { h.ng } else { -h.ng };
+                let segment = match toward {
+                    Toward::Light => {
+                        let (light, _, u) = self.choose_light(&mut rng);
+                        self.lights[light]
+                            .sample_li(h.p, u)
+                            .and_then(|s| self.shadow_segment(h.p, n, s.p, s.n))
+                    }
+                    Toward::Camera => self.shadow_segment(h.p, n, cam.position, None),
+                };
+                segments.extend(segment);
+                d = crate::math::Frame::from_z(n)
+                    .to_world(crate::sampling::sample_cosine_hemisphere(rng.uniform2()));
+                o = self.spawn_origin(h.p, n, d);
+            }
+        }
+        segments
     }
 
     /// The same scene seen by a camera of `width` x `height` pixels (its position, view and
@@ -541,8 +603,22 @@ impl Scene {
     /// at the target when it lies on a surface (area light), `None` for a point.
     #[inline]
     pub fn visible(&self, p: Vec3, ng: Vec3, target: Vec3, target_n: Option<Vec3>) -> bool {
+        self.visible_toward(Toward::Light, p, ng, target, target_n)
+    }
+
+    /// [`Scene::visible`] for a shadow ray `toward` a light or the camera (the CWBVH's
+    /// traversal order for that kind, [`Accel::choose_shadow_order`]).
+    #[inline]
+    fn visible_toward(
+        &self,
+        toward: Toward,
+        p: Vec3,
+        ng: Vec3,
+        target: Vec3,
+        target_n: Option<Vec3>,
+    ) -> bool {
         self.shadow_segment(p, ng, target, target_n)
-            .is_some_and(|(o, dir, t_max)| self.bvh.unoccluded(o, dir, t_max))
+            .is_some_and(|(o, dir, t_max)| self.bvh.unoccluded(toward, o, dir, t_max))
     }
 
     /// The fraction of light that goes from `p` (normal `ng`) to `target` (normal `target_n`
@@ -552,9 +628,13 @@ impl Scene {
     /// crossed ([`Scene::opacity`]), and the number of sheets crossed (each a segment of the
     /// path, as sampling through it makes; a cut-out is no segment, as a walk passes it
     /// without a vertex). Without thin sheets and masks in the scene, the shadow ray of
-    /// [`Scene::visible`].
+    /// [`Scene::visible`]. `toward`: whether the segment ends at a light (next-event
+    /// estimation) or at the camera's lens (either way round: light tracing's and the
+    /// importance map's connections), for the CWBVH's traversal order
+    /// ([`Accel::choose_shadow_order`]).
     pub fn transmittance(
         &self,
+        toward: Toward,
         p: Vec3,
         ng: Vec3,
         target: Vec3,
@@ -562,7 +642,7 @@ impl Scene {
         max_sheets: u32,
     ) -> (Rgb, u32) {
         if !self.effects.passes_light() {
-            let v = self.visible(p, ng, target, target_n);
+            let v = self.visible_toward(toward, p, ng, target, target_n);
             return (if v { Rgb::ONE } else { Rgb::ZERO }, 0);
         }
         let mut t = Rgb::ONE;
@@ -601,7 +681,7 @@ impl Scene {
     /// centre).
     #[inline]
     pub fn visible_from_camera(&self, p: Vec3, ng: Vec3) -> bool {
-        self.visible(p, ng, self.camera.position, None)
+        self.visible_toward(Toward::Camera, p, ng, self.camera.position, None)
     }
 
     /// The maximum particle query distance: the setting, or 5% of the bounding-box diagonal.

@@ -39,10 +39,10 @@ use footprint::bsdf::TransportMode;
 use footprint::film::SplatList;
 use footprint::guide::sampler::{DirectionSample, SamplerState};
 use footprint::rng::Rng;
-use footprint::scene::Scene;
 use footprint::scene::camera::{Camera, CameraConnection};
 use footprint::scene::features::Features;
 use footprint::scene::light::Light;
+use footprint::scene::{Scene, Toward};
 use glam::{Vec2, Vec3};
 use std::marker::PhantomData;
 
@@ -216,8 +216,10 @@ pub fn trace<'a, F: Features, W: LightShare>(
             // One segment, and one more per thin sheet passed through.
             let sheets = ctx.max_depth.saturating_sub(1);
             let (t, _) = match em.n {
-                Some(n) => scene.transmittance(em.p, n, conn.lens, None, sheets),
-                None => scene.transmittance(conn.lens, cam.frame.z, em.p, None, sheets),
+                Some(n) => scene.transmittance(Toward::Camera, em.p, n, conn.lens, None, sheets),
+                None => {
+                    scene.transmittance(Toward::Camera, conn.lens, cam.frame.z, em.p, None, sheets)
+                }
             };
             if le.max_element() > 0.0 && t.max_element() > 0.0 {
                 let v = le * t * (cos_l * conn.we_geom / (em.pdf_pos * pmf));
@@ -301,7 +303,8 @@ impl<W: LightShare, F: Features> Visitor for LightVisitor<'_, '_, W, F> {
         }
         // The connection closes depth + 1 segments, and one more per thin sheet.
         let sheets = self.max_depth.saturating_sub(v.depth + 1);
-        let (t, _) = scene.transmittance(v.hit.p, v.hit.ng, conn.lens, None, sheets);
+        let (t, _) =
+            scene.transmittance(Toward::Camera, v.hit.p, v.hit.ng, conn.lens, None, sheets);
         if t.max_element() <= 0.0 {
             return;
         }

@@ -25,9 +25,9 @@ use footprint::bsdf::TransportMode;
 use footprint::guide::sampler::{DirectionSample, GuidedSampler, SamplerState, ScatterPoint};
 use footprint::math::power_heuristic;
 use footprint::rng::Rng;
-use footprint::scene::Scene;
 use footprint::scene::features::{Features, General};
 use footprint::scene::light::LightSample;
+use footprint::scene::{Scene, Toward};
 use glam::{Vec2, Vec3};
 use std::marker::PhantomData;
 
@@ -336,7 +336,7 @@ impl<S: CameraShare, F: Features> Visitor for CameraVisitor<'_, S, F> {
         // The connection closes a path of depth + 1 segments, and one more per thin sheet it
         // passes through.
         let sheets = self.max_depth.saturating_sub(v.depth + 1);
-        let (t, _) = scene.transmittance(v.hit.p, v.hit.ng, ls.p, ls.n, sheets);
+        let (t, _) = scene.transmittance(Toward::Light, v.hit.p, v.hit.ng, ls.p, ls.n, sheets);
         if t.max_element() <= 0.0 {
             return;
         }
