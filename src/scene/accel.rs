@@ -10,9 +10,9 @@
 
 use crate::keyword::Keyword;
 use crate::scene::bvh::{Bvh, BvhHit};
-pub use crate::scene::bvh::{ShadowOrder, Toward};
 use crate::scene::embree::{self, EmbreeBvh};
 use crate::scene::geometry::TriangleGeom;
+pub use crate::scene::shadow_order::{ShadowOrder, Toward};
 use glam::Vec3;
 use std::sync::atomic::{AtomicU8, Ordering};
 

@@ -16,6 +16,7 @@
 //! with a branch the ray's data decides, which mispredicts).
 
 use crate::scene::geometry::TriangleGeom;
+use crate::scene::shadow_order::{RTSAH_MARGIN, ShadowOrder, Toward};
 use glam::{UVec2, Vec3, Vec3A};
 use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::node::CwBvhNode;
@@ -23,52 +24,6 @@ use obvhs::ray::Ray as BvhRay;
 use obvhs::triangle::Triangle as BvhTriangle;
 use obvhs::{BvhBuildParams, cwbvh::builder::build_cwbvh_from_tris};
 use std::time::Duration;
-
-/// The order in which a shadow ray visits a node's children.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ShadowOrder {
-    /// Near to far from the ray's origin (the closest-hit order).
-    NearFirst,
-    /// By each child's chance of blocking over its cost, the same for every ray
-    /// ([`shadow_order`](crate::scene::shadow_order)).
-    Rtsah,
-}
-
-/// Where a shadow ray ends: the two kinds of shadow rays block in different places (a
-/// light inside a lamp's shade is hidden near the light; the camera stands in the open), so
-/// each kind has its own [`ShadowOrder`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Toward {
-    /// Next-event estimation: from a surface to a point on a light.
-    Light,
-    /// A connection to the camera (light tracing, the importance map's particles).
-    Camera,
-}
-
-impl Toward {
-    /// How the kind reads in a report.
-    pub fn describe(self) -> &'static str {
-        match self {
-            Toward::Light => "a light",
-            Toward::Camera => "the camera",
-        }
-    }
-}
-
-impl ShadowOrder {
-    /// How the order reads in a report.
-    pub fn describe(self) -> &'static str {
-        match self {
-            ShadowOrder::NearFirst => "near first",
-            ShadowOrder::Rtsah => "by blocking chance (RTSAH)",
-        }
-    }
-}
-
-/// Shadow rays take the RTSAH order only when it tests fewer than this fraction of the
-/// nodes and triangles near first tests: its nodes are a copy that closest-hit rays do not
-/// keep in the cache, so a saving within the probes' noise is not worth them.
-pub const RTSAH_MARGIN: f64 = 0.9;
 
 /// A closest hit: the original triangle index, distance and barycentrics.
 #[derive(Clone, Copy, Debug)]
@@ -295,14 +250,19 @@ impl Bvh {
     pub fn unoccluded(&self, toward: Toward, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
         match self.shadow_orders[toward as usize] {
             ShadowOrder::NearFirst => self.shadow_query::<false>(origin, dir, t_max).0,
-            ShadowOrder::Rtsah => self.shadow_query::<true>(origin, dir, t_max).0,
+            ShadowOrder::Rtsah => {
+                // Only chosen while the copy is kept (a choice made after
+                // `release_unused_shadow_nodes` measures near first twice).
+                debug_assert!(!self.shadow_nodes.is_empty());
+                self.shadow_query::<true>(origin, dir, t_max).0
+            }
         }
     }
 
     /// Chooses the order of [`Bvh::unoccluded`] for shadow rays `toward` a light or the
     /// camera: the one that tests fewer nodes and triangles over `segments` (origin,
     /// direction, length: a sample of the scene's shadow rays of that kind), near first on a
-    /// tie or a saving under [`RTSAH_MARGIN`]. Returns the choice and the nodes and
+    /// tie or a saving of at most 10% ([`RTSAH_MARGIN`]). Returns the choice and the nodes and
     /// triangles tested per segment in each order (near first, RTSAH).
     pub fn choose_shadow_order(
         &mut self,
@@ -331,6 +291,11 @@ impl Bvh {
         if !self.shadow_orders.contains(&ShadowOrder::Rtsah) {
             self.shadow_nodes = Vec::new();
         }
+    }
+
+    /// Whether the RTSAH copy of the nodes is kept.
+    pub fn keeps_shadow_nodes(&self) -> bool {
+        !self.shadow_nodes.is_empty()
     }
 
     /// The order shadow rays `toward` a light or the camera take.
@@ -467,9 +432,9 @@ mod tests {
     }
 
     /// The leaves under node `i` of `nodes`: each leaf child's world box and its first
-    /// primitive and count; asserts that each inner child's node starts (its box's corner
-    /// `p`) inside the box its slot gives it, so that a slot cannot point at another
-    /// child's node.
+    /// primitive and count; asserts that each inner child's node has its children inside
+    /// the box its slot gives it (to one quantisation step of the child's grid, the
+    /// rounding of its own boxes), so that a slot cannot point at another child's node.
     fn leaves(nodes: &[CwBvhNode], i: usize, out: &mut Vec<([u32; 6], u32, u32)>) {
         let node = &nodes[i];
         for s in 0..8 {
@@ -481,12 +446,15 @@ mod tests {
                 let child = node.child_base_idx as usize
                     + (node.imask as u32 & ((1u32 << s) - 1)).count_ones() as usize;
                 let b = node.child_aabb(s);
-                let corner = Vec3A::from(nodes[child].p);
-                let tol = 1e-5 * (1.0 + corner.abs().max_element());
-                assert!(
-                    (b.min - tol).cmple(corner).all() && corner.cmple(b.max + tol).all(),
-                    "node {i} slot {s}: child node at {corner} outside {b:?}"
-                );
+                let c = &nodes[child];
+                let tol = c.compute_extent() + 1e-5 * (1.0 + b.max.abs().max(b.min.abs()));
+                for t in (0..8).filter(|&t| c.child_meta[t] != 0) {
+                    let cb = c.child_aabb(t);
+                    assert!(
+                        (b.min - tol).cmple(cb.min).all() && cb.max.cmple(b.max + tol).all(),
+                        "node {i} slot {s}: child {child}'s box {cb:?} outside {b:?}"
+                    );
+                }
                 leaves(nodes, child, out);
             } else {
                 let b = node.child_aabb(s);

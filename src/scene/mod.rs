@@ -54,7 +54,8 @@ pub const MAX_COORDINATE: f32 = 1e15;
 /// stack up to (a ray through 1024 layers each letting half through carries 2⁻¹⁰²⁴).
 pub const MAX_CUTOUT_CROSSINGS: u32 = 1024;
 
-/// Camera paths whose shadow rays [`Scene::probe_shadow_segments`] draws.
+/// Paths (camera paths for shadow rays toward a light, light paths for those toward the
+/// camera) whose shadow rays [`Scene::probe_shadow_segments`] draws.
 pub const SHADOW_PROBES: usize = 2048;
 
 /// Counts reported after loading.
@@ -302,10 +303,14 @@ impl Scene {
             source_params: String::new(),
             environment_light,
         };
-        for toward in [Toward::Light, Toward::Camera] {
-            let segments = scene.probe_shadow_segments(toward);
-            if let Some(bvh) = Arc::get_mut(&mut scene.bvh) {
-                bvh.choose_shadow_order(toward, &segments);
+        // The CWBVH's shadow rays' order (Embree keeps its own; with thin sheets or cut-outs
+        // shadow segments are traced as closest hits, and no shadow ray is left).
+        if matches!(*scene.bvh, Accel::Cwbvh(_)) && !scene.effects.passes_light() {
+            for toward in [Toward::Light, Toward::Camera] {
+                let segments = scene.probe_shadow_segments(toward);
+                if let Some(bvh) = Arc::get_mut(&mut scene.bvh) {
+                    bvh.choose_shadow_order(toward, &segments);
+                }
             }
         }
         if let Some(bvh) = Arc::get_mut(&mut scene.bvh) {
@@ -335,7 +340,8 @@ impl Scene {
                     else {
                         continue;
                     };
-                    (e.p, e.dir)
+                    // Leaving the light as light tracing's paths do (off its surface).
+                    (e.n.map_or(e.p, |n| self.offset_origin(e.p, n)), e.dir)
                 }
             };
             for _ in 0..2 {
