@@ -14,6 +14,10 @@
 //! children are entered and every image is the same bit for bit, but the mask of entered
 //! children is assembled without a branch per child (obvhs tests each of the eight lanes
 //! with a branch the ray's data decides, which mispredicts).
+//!
+//! Shadow rays visit children near first, as closest hits do, or in the order of a
+//! reordered copy of the nodes (by blocking chance, [`crate::scene::shadow_order`]),
+//! whichever tests fewer nodes on the scene's own shadow rays ([`Bvh::choose_shadow_order`]).
 
 use crate::scene::geometry::TriangleGeom;
 use crate::scene::shadow_order::{RTSAH_MARGIN, ShadowOrder, Toward};

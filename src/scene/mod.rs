@@ -303,8 +303,8 @@ impl Scene {
             source_params: String::new(),
             environment_light,
         };
-        // The CWBVH's shadow rays' order (Embree keeps its own; with thin sheets or cut-outs
-        // shadow segments are traced as closest hits, and no shadow ray is left).
+        // The order of the CWBVH's shadow rays (Embree keeps its own; in a scene with thin
+        // sheets or cut-outs every shadow segment is walked with closest hits instead).
         if matches!(*scene.bvh, Accel::Cwbvh(_)) && !scene.effects.passes_light() {
             for toward in [Toward::Light, Toward::Camera] {
                 let segments = scene.probe_shadow_segments(toward);
