@@ -391,6 +391,17 @@ mod tests {
     use crate::rng::Rng;
     use crate::sampling::sample_uniform_sphere;
 
+    /// `n` random triangles in a 10 m cube, triangle `i` spanning about `size(i)`.
+    fn soup(rng: &mut Rng, n: usize, size: impl Fn(usize) -> f32) -> Vec<TriangleGeom> {
+        let mut p = || Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
+        (0..n)
+            .map(|i| {
+                let c = p() * 10.0;
+                TriangleGeom::new(c, c + (p() - 0.5) * size(i), c + (p() - 0.5) * size(i))
+            })
+            .collect()
+    }
+
     /// Our node test enters exactly the children obvhs' own does (`intersect_ray`), for
     /// every node of a BVH over a random soup of 2000 triangles and rays from random
     /// points in random directions (axis-aligned ones included, whose reciprocals are
@@ -399,16 +410,7 @@ mod tests {
     fn node_test_enters_the_children_obvhs_enters() {
         let mut rng = Rng::new(31, 0, 0);
         let p = |rng: &mut Rng| Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
-        let tris: Vec<TriangleGeom> = (0..2000)
-            .map(|_| {
-                let c = p(&mut rng) * 10.0;
-                TriangleGeom::new(
-                    c,
-                    c + (p(&mut rng) - 0.5) * 0.8,
-                    c + (p(&mut rng) - 0.5) * 0.8,
-                )
-            })
-            .collect();
+        let tris = soup(&mut rng, 2000, |_| 0.8);
         let bvh = Bvh::build(&tris);
         assert!(bvh.node_count() > 50);
         let mut entered = 0usize;
@@ -480,18 +482,7 @@ mod tests {
     #[test]
     fn the_shadow_copy_holds_the_same_tree() {
         let mut rng = Rng::new(32, 0, 0);
-        let p = |rng: &mut Rng| Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
-        let tris: Vec<TriangleGeom> = (0..3000)
-            .map(|i| {
-                let c = p(&mut rng) * 10.0;
-                let size = if i % 10 == 0 { 4.0 } else { 0.3 };
-                TriangleGeom::new(
-                    c,
-                    c + (p(&mut rng) - 0.5) * size,
-                    c + (p(&mut rng) - 0.5) * size,
-                )
-            })
-            .collect();
+        let tris = soup(&mut rng, 3000, |i| if i % 10 == 0 { 4.0 } else { 0.3 });
         let bvh = Bvh::build(&tris);
         assert_eq!(bvh.bvh.nodes.len(), bvh.shadow_nodes.len());
         let (mut a, mut b) = (Vec::new(), Vec::new());
