@@ -187,45 +187,49 @@ fn axis_aligned_rays_with_negative_zeros_hit() {
 }
 
 /// The CWBVH chooses each kind of shadow ray's order from probe rays, and the choice is the
-/// cheaper one where the orders differ most: on desk, whose lamp sits inside its shade (so
-/// that blockers of rays toward it lie near the lamp, the far end for near first), rays
-/// toward the light take the RTSAH order and test at least a quarter fewer nodes and
-/// triangles; on door, whose light is behind a wall (blockers near the rays' origins), they
-/// stay near first, which tests at least a quarter fewer. The scenes as loaded on the CWBVH
-/// carry the same choice, and door's, where neither kind takes RTSAH, has freed the copy
-/// of the nodes.
+/// cheaper one where the orders differ most: on desk, rays toward the camera take the RTSAH
+/// order and test more than 10% fewer nodes and triangles (the margin that takes RTSAH);
+/// on door, whose light is behind a wall (blockers near the rays' origins), rays toward
+/// the light stay near first, which tests at least a quarter fewer. The scenes as loaded on
+/// the CWBVH carry the same choice, and door's, where neither kind takes RTSAH, has freed
+/// the copy of the nodes.
 #[test]
 fn shadow_rays_take_the_cheaper_order() {
     use footprint::scene::accel::set_backend;
-    for (name, expected) in [
-        ("desk", ShadowOrder::Rtsah),
-        ("door", ShadowOrder::NearFirst),
+    for (name, toward, expected, saving) in [
+        ("desk", Toward::Camera, ShadowOrder::Rtsah, 0.9),
+        ("door", Toward::Light, ShadowOrder::NearFirst, 0.75),
     ] {
         let scene = load_scene(&scene_path(name)).unwrap();
         let mut accel = Accel::build_with(&scene.triangles, Backend::Cwbvh).unwrap();
-        let segments = scene.probe_shadow_segments(Toward::Light);
+        let segments = scene.probe_shadow_segments(toward);
         assert!(
             segments.len() > 500,
             "{name}: {} probe rays",
             segments.len()
         );
-        let (order, visits) = accel.choose_shadow_order(Toward::Light, &segments).unwrap();
+        let (order, visits) = accel.choose_shadow_order(toward, &segments).unwrap();
         assert_eq!(order, expected, "{name}: visits per ray {visits:?}");
         let (cheaper, dearer) = match expected {
             ShadowOrder::Rtsah => (visits[1], visits[0]),
             ShadowOrder::NearFirst => (visits[0], visits[1]),
         };
-        assert!(cheaper < 0.75 * dearer, "{name}: visits per ray {visits:?}");
+        assert!(
+            cheaper < saving * dearer,
+            "{name}: visits per ray {visits:?}"
+        );
         // As loaded (this test's process only: nextest runs each test in its own).
         set_backend(Backend::Cwbvh);
         let loaded = load_scene(&scene_path(name)).unwrap();
         let Accel::Cwbvh(b) = &*loaded.bvh else {
             panic!("{name}: the CWBVH was asked for");
         };
-        assert_eq!(b.shadow_order(Toward::Light), expected, "{name} as loaded");
+        assert_eq!(b.shadow_order(toward), expected, "{name} as loaded");
         assert_eq!(
             b.keeps_shadow_nodes(),
-            expected == ShadowOrder::Rtsah || b.shadow_order(Toward::Camera) == ShadowOrder::Rtsah,
+            [Toward::Light, Toward::Camera]
+                .map(|k| b.shadow_order(k))
+                .contains(&ShadowOrder::Rtsah),
             "{name}: the copy kept only where used"
         );
     }

@@ -1,5 +1,5 @@
-//! The acceleration structure: a compressed wide BVH (CWBVH, Ylitie et al. 2017) built and
-//! traversed by `obvhs`, over the scene's triangles. Triangles are stored in the BVH's leaf
+//! The acceleration structure: a compressed wide BVH (CWBVH, Ylitie et al. 2017) built by
+//! `obvhs` over the scene's triangles. Triangles are stored in the BVH's leaf
 //! order so a leaf's triangles are contiguous in memory.
 //!
 //! obvhs culls CWBVH nodes whose box the ray leaves before `t = 1e-4` (a fixed epsilon in its
@@ -9,19 +9,18 @@
 //! every hit in front of the true origin lies in boxes the node test keeps. Directions have
 //! their negative zeros made positive (see [`canonical_zeros`]).
 //!
-//! The traversal is obvhs' (`obvhs::traverse!`) with a node test of our own,
-//! [`child_hits`]: the same slab arithmetic as obvhs' `intersect_ray_simd`, so the same
-//! children are entered and every image is the same bit for bit, but the mask of entered
-//! children is assembled without a branch per child (obvhs tests each of the eight lanes
-//! with a branch the ray's data decides, which mispredicts).
+//! The walks are [`crate::scene::cwbvh_walk`]'s: children near to far by the distance at
+//! which the ray enters their boxes, a pending child dropped once the closest hit lies
+//! before its box.
 //!
-//! Shadow rays visit children near first, as closest hits do, or in the order of a
+//! Shadow rays visit inner children near first, as closest hits do, or in the order of a
 //! reordered copy of the nodes (by blocking chance, [`crate::scene::shadow_order`]),
 //! whichever tests fewer nodes on the scene's own shadow rays ([`Bvh::choose_shadow_order`]).
 
+use crate::scene::cwbvh_walk::{MAX_TRIANGLES, any_hit, closest_hit, stack_entries, with_stack};
 use crate::scene::geometry::TriangleGeom;
 use crate::scene::shadow_order::{RTSAH_MARGIN, ShadowOrder, Toward};
-use glam::{UVec2, Vec3, Vec3A};
+use glam::{Vec3, Vec3A};
 use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::ray::Ray as BvhRay;
@@ -45,7 +44,8 @@ fn canonical_zeros(d: Vec3) -> Vec3 {
     d + Vec3::ZERO
 }
 
-/// How far behind its origin a query ray starts (more than the node test's [`NODE_EPSILON`]).
+/// How far behind its origin a query ray starts (more than the node test's
+/// [`NODE_EPSILON`](crate::scene::cwbvh_walk::NODE_EPSILON)).
 pub const ORIGIN_BACKOFF: f32 = 4e-4;
 
 /// A query's ray as the traversal takes it: the direction without negative zeros, the
@@ -63,114 +63,6 @@ fn query_ray(origin: Vec3, dir: Vec3, t_max: f32) -> (Vec3, Vec3, BvhRay) {
     (start, dir, ray)
 }
 
-/// Boxes the ray leaves before this distance are culled (obvhs' own node test's constant,
-/// kept so that the same boxes are entered).
-const NODE_EPSILON: f32 = 1e-4;
-
-/// The traversal's mask of the children of `node` the ray enters within `[NODE_EPSILON,
-/// ray.tmax]` (obvhs' `CwBvhNode::intersect_ray` contract: for an inner child its bit in
-/// the top byte, for a leaf its triangles' bits in the low 24).
-///
-/// The slab test is obvhs' `intersect_ray_simd` operation for operation: the quantised
-/// planes (bytes) widened to floats, scaled by the node's power-of-two extent and offset,
-/// four children at a time, so the same children are entered. Each entered child's bits
-/// are `child_bits << bit_index`, computed for four lanes at once: `2^bit_index` is built
-/// as a float's exponent and converted (2^31 converts to `0x8000_0000`, the one
-/// out-of-range case, whose result is that same bit pattern), multiplied by the child bits
-/// (at most 7, below bit 24 for leaves; 1 for inner children), masked with the slab test's
-/// lanes and or-ed across lanes.
-#[cfg(all(target_arch = "x86_64", target_feature = "sse4.1"))]
-#[inline(always)]
-fn child_hits(node: &CwBvhNode, ray: &BvhRay, oct_inv4: u32) -> u32 {
-    use std::arch::x86_64::*;
-    let extent = Vec3A::new(
-        f32::from_bits((node.e[0] as u32) << 23),
-        f32::from_bits((node.e[1] as u32) << 23),
-        f32::from_bits((node.e[2] as u32) << 23),
-    );
-    let scale = extent * ray.inv_direction;
-    let offset = (Vec3A::from(node.p) - ray.origin) * ray.inv_direction;
-    let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
-    // SAFETY: SSE4.1 is enabled for this build (the cfg above); the loads read plain
-    // integers out of the node's byte arrays.
-    unsafe {
-        let planes = |bytes: &[u8; 8], half: usize| -> __m128 {
-            let word = u32::from_le_bytes([
-                bytes[4 * half],
-                bytes[4 * half + 1],
-                bytes[4 * half + 2],
-                bytes[4 * half + 3],
-            ]);
-            _mm_cvtepi32_ps(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(word as i32)))
-        };
-        let lanes = |x: u64, half: usize| -> __m128i {
-            _mm_cvtepu8_epi32(_mm_cvtsi32_si128((x >> (32 * half)) as u32 as i32))
-        };
-        let (sx, sy, sz) = (
-            _mm_set1_ps(scale.x),
-            _mm_set1_ps(scale.y),
-            _mm_set1_ps(scale.z),
-        );
-        let (ox, oy, oz) = (
-            _mm_set1_ps(offset.x),
-            _mm_set1_ps(offset.y),
-            _mm_set1_ps(offset.z),
-        );
-        let near_far = |lo: __m128, hi: __m128, negative: bool| {
-            if negative { (hi, lo) } else { (lo, hi) }
-        };
-        let mut hits = _mm_setzero_si128();
-        for half in 0..2 {
-            let (nx, fx) = near_far(
-                planes(&node.child_min_x, half),
-                planes(&node.child_max_x, half),
-                ray.direction.x < 0.0,
-            );
-            let (ny, fy) = near_far(
-                planes(&node.child_min_y, half),
-                planes(&node.child_max_y, half),
-                ray.direction.y < 0.0,
-            );
-            let (nz, fz) = near_far(
-                planes(&node.child_min_z, half),
-                planes(&node.child_max_z, half),
-                ray.direction.z < 0.0,
-            );
-            let t_near = _mm_max_ps(
-                _mm_add_ps(_mm_mul_ps(nx, sx), ox),
-                _mm_max_ps(
-                    _mm_add_ps(_mm_mul_ps(ny, sy), oy),
-                    _mm_add_ps(_mm_mul_ps(nz, sz), oz),
-                ),
-            );
-            let t_far = _mm_min_ps(
-                _mm_add_ps(_mm_mul_ps(fx, sx), ox),
-                _mm_min_ps(
-                    _mm_add_ps(_mm_mul_ps(fy, sy), oy),
-                    _mm_add_ps(_mm_mul_ps(fz, sz), oz),
-                ),
-            );
-            let t_near = _mm_max_ps(t_near, _mm_set1_ps(NODE_EPSILON));
-            let t_far = _mm_min_ps(t_far, _mm_set1_ps(ray.tmax));
-            let entered = _mm_castps_si128(_mm_cmple_ps(t_near, t_far));
-            let exponent = _mm_add_epi32(lanes(bit_index8, half), _mm_set1_epi32(127));
-            let pow2 = _mm_cvttps_epi32(_mm_castsi128_ps(_mm_slli_epi32(exponent, 23)));
-            let bits = _mm_mullo_epi32(lanes(child_bits8, half), pow2);
-            hits = _mm_or_si128(hits, _mm_and_si128(bits, entered));
-        }
-        let hits = _mm_or_si128(hits, _mm_shuffle_epi32(hits, 0b01_00_11_10));
-        let hits = _mm_or_si128(hits, _mm_shuffle_epi32(hits, 0b10_11_00_01));
-        _mm_cvtsi128_si32(hits) as u32
-    }
-}
-
-/// Without SSE4.1: obvhs' own node test.
-#[cfg(not(all(target_arch = "x86_64", target_feature = "sse4.1")))]
-#[inline(always)]
-fn child_hits(node: &CwBvhNode, ray: &BvhRay, oct_inv4: u32) -> u32 {
-    node.intersect_ray(ray, oct_inv4)
-}
-
 pub struct Bvh {
     bvh: CwBvh,
     /// The nodes as shadow rays visit them in [`ShadowOrder::Rtsah`] (`shadow_order`);
@@ -181,12 +73,19 @@ pub struct Bvh {
     /// `ordered[i]` is triangle `original[i]`, in the BVH's primitive order.
     ordered: Vec<TriangleGeom>,
     original: Vec<u32>,
+    /// The entries a walk's stack needs ([`stack_entries`]).
+    stack_entries: usize,
 }
 
 impl Bvh {
     /// Builds the BVH over `triangles` (at least one).
     pub fn build(triangles: &[TriangleGeom]) -> Self {
         assert!(!triangles.is_empty(), "a BVH needs at least one triangle");
+        assert!(
+            triangles.len() < MAX_TRIANGLES,
+            "the CWBVH holds fewer than 2^29 triangles ({} given)",
+            triangles.len()
+        );
         let tris: Vec<BvhTriangle> = triangles
             .iter()
             .map(|t| BvhTriangle {
@@ -206,6 +105,7 @@ impl Bvh {
             0.5 * ordered[p].cross().length()
         });
         Bvh {
+            stack_entries: stack_entries(&bvh.nodes),
             bvh,
             shadow_nodes,
             shadow_orders: [ShadowOrder::NearFirst; 2],
@@ -218,27 +118,16 @@ impl Bvh {
     #[inline]
     pub fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<BvhHit> {
         let (start, dir, mut ray) = query_ray(origin, dir, t_max);
-        let mut best: Option<(u32, f32, f32)> = None;
-        let mut state = self.bvh.new_traversal(ray.direction);
-        let mut node: &CwBvhNode;
-        obvhs::traverse!(
-            self.bvh,
-            node,
-            state,
-            child_hits(node, &ray, state.oct_inv4),
-            {
-                let id = state.primitive_id;
-                // Only a t below the closest so far is accepted, and the ray's end moves
-                // there: `best` is the closest candidate.
-                if let Some((t, b1, b2)) =
-                    self.ordered[id as usize].intersect_range(start, dir, ORIGIN_BACKOFF, ray.tmax)
-                {
-                    ray.tmax = t;
-                    best = Some((id, b1, b2));
-                }
-            }
-        );
-        best.map(|(id, b1, b2)| BvhHit {
+        let hit = with_stack(self.stack_entries, |stack| {
+            closest_hit(
+                &self.bvh.nodes,
+                &self.ordered,
+                (start, dir, ORIGIN_BACKOFF),
+                &mut ray,
+                stack,
+            )
+        });
+        hit.map(|(id, b1, b2)| BvhHit {
             triangle: self.original[id as usize],
             t: (ray.tmax - ORIGIN_BACKOFF).max(f32::MIN_POSITIVE),
             b1,
@@ -324,52 +213,26 @@ impl Bvh {
         }
     }
 
-    /// The shadow-ray traversal over the closest-hit nodes (near first) or over the RTSAH
-    /// copy, and the nodes and triangles it tested.
+    /// The shadow-ray walk over the closest-hit nodes (near first) or over the RTSAH copy
+    /// (in its stored order), and the nodes and triangles it tested.
     #[inline(always)]
     fn shadow_query<const RTSAH: bool>(&self, origin: Vec3, dir: Vec3, t_max: f32) -> (bool, u32) {
         let (start, dir, ray) = query_ray(origin, dir, t_max);
-        // What obvhs' traversal reads of a `CwBvh`: its `nodes`.
-        struct Nodes<'a> {
-            nodes: &'a [CwBvhNode],
-        }
-        let nodes = Nodes {
-            nodes: if RTSAH {
-                &self.shadow_nodes
-            } else {
-                &self.bvh.nodes
-            },
+        let nodes = if RTSAH {
+            &self.shadow_nodes
+        } else {
+            &self.bvh.nodes
         };
-        let mut state = self.bvh.new_traversal(ray.direction);
-        if RTSAH {
-            // Slots from the highest down, whatever the ray's octant.
-            state.oct_inv4 = 0;
-        }
-        let mut node: &CwBvhNode;
-        let mut clear = true;
-        let mut visits = 0u32;
-        'traversal: {
-            obvhs::traverse!(
+        let (blocked, tested) = with_stack(self.stack_entries, |stack| {
+            any_hit::<RTSAH>(
                 nodes,
-                node,
-                state,
-                {
-                    visits += 1;
-                    child_hits(node, &ray, state.oct_inv4)
-                },
-                {
-                    visits += 1;
-                    if self.ordered[state.primitive_id as usize]
-                        .intersect_range(start, dir, ORIGIN_BACKOFF, ray.tmax)
-                        .is_some()
-                    {
-                        clear = false;
-                        break 'traversal;
-                    }
-                }
-            );
-        }
-        (clear, visits)
+                &self.ordered,
+                (start, dir, ORIGIN_BACKOFF),
+                &ray,
+                stack,
+            )
+        });
+        (!blocked, tested)
     }
 
     pub fn node_count(&self) -> usize {
@@ -389,7 +252,6 @@ impl Bvh {
 mod tests {
     use super::*;
     use crate::rng::Rng;
-    use crate::sampling::sample_uniform_sphere;
 
     /// `n` random triangles in a 10 m cube, triangle `i` spanning about `size(i)`.
     fn soup(rng: &mut Rng, n: usize, size: impl Fn(usize) -> f32) -> Vec<TriangleGeom> {
@@ -400,41 +262,6 @@ mod tests {
                 TriangleGeom::new(c, c + (p() - 0.5) * size(i), c + (p() - 0.5) * size(i))
             })
             .collect()
-    }
-
-    /// Our node test enters exactly the children obvhs' own does (`intersect_ray`), for
-    /// every node of a BVH over a random soup of 2000 triangles and rays from random
-    /// points in random directions (axis-aligned ones included, whose reciprocals are
-    /// huge), with finite and infinite ends.
-    #[test]
-    fn node_test_enters_the_children_obvhs_enters() {
-        let mut rng = Rng::new(31, 0, 0);
-        let p = |rng: &mut Rng| Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
-        let tris = soup(&mut rng, 2000, |_| 0.8);
-        let bvh = Bvh::build(&tris);
-        assert!(bvh.node_count() > 50);
-        let mut entered = 0usize;
-        for i in 0..400 {
-            let o = p(&mut rng) * 12.0 - 1.0;
-            let d = match i % 8 {
-                0 => Vec3::X,
-                // Negative zeros in x and y (the node test reads the sign for the slab order).
-                1 => -Vec3::Z,
-                _ => sample_uniform_sphere(rng.uniform2()),
-            };
-            let t_max = if i % 2 == 0 { f32::INFINITY } else { 4.0 };
-            let ray = BvhRay::new(Vec3A::from(o), Vec3A::from(d), 0.0, t_max);
-            let state = bvh.bvh.new_traversal(ray.direction);
-            for node in &bvh.bvh.nodes {
-                let ours = child_hits(node, &ray, state.oct_inv4);
-                assert_eq!(ours, node.intersect_ray(&ray, state.oct_inv4), "ray {i}");
-                entered += (ours != 0) as usize;
-            }
-        }
-        assert!(
-            entered > 1000,
-            "too few nodes entered ({entered}) to test anything"
-        );
     }
 
     /// The leaves under node `i` of `nodes`: each leaf child's world box and its first
@@ -507,5 +334,59 @@ mod tests {
             reordered += (node.child_meta != original.child_meta) as usize;
         }
         assert!(reordered > 10, "only {reordered} nodes reordered");
+    }
+
+    /// The walks on a stack of exactly `stack_entries` entries (a slice: one more would
+    /// panic) over a soup of 3000 triangles of mixed sizes find what a loop over every
+    /// triangle finds, for 2000 random rays: the closest hit's distance, and whether
+    /// anything blocks a segment, in either order.
+    #[test]
+    fn walks_find_what_a_loop_over_every_triangle_finds() {
+        use crate::sampling::sample_uniform_sphere;
+        use crate::scene::cwbvh_walk::Pending;
+        let mut rng = Rng::new(33, 0, 0);
+        let tris = soup(&mut rng, 3000, |i| if i % 10 == 0 { 4.0 } else { 0.3 });
+        let bvh = Bvh::build(&tris);
+        assert!(
+            bvh.stack_entries > 7,
+            "a tree of {} stack entries tests nothing",
+            bvh.stack_entries
+        );
+        let mut stack = vec![Pending::uninit(); bvh.stack_entries];
+        let (mut hits, mut blocked) = (0, 0);
+        for i in 0..2000 {
+            let o = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * 12.0 - 1.0;
+            let d = sample_uniform_sphere(rng.uniform2());
+            let t_max = if i % 2 == 0 { f32::INFINITY } else { 3.0 };
+            let expected = tris
+                .iter()
+                .filter_map(|t| t.intersect_range(o, d, 0.0, t_max).map(|h| h.0))
+                .fold(None, |best: Option<f32>, t| {
+                    Some(best.map_or(t, |b| b.min(t)))
+                });
+            let query = (o, d, 0.0);
+            let mut ray = BvhRay::new(Vec3A::from(o), Vec3A::from(d), 0.0, t_max);
+            let found = closest_hit(&bvh.bvh.nodes, &bvh.ordered, query, &mut ray, &mut stack);
+            match (expected, found) {
+                (None, None) => {}
+                (Some(t), Some(_)) => {
+                    assert_eq!(ray.tmax, t, "ray {i}");
+                    hits += 1;
+                }
+                (e, f) => panic!("ray {i}: every triangle {e:?}, the walk {f:?}"),
+            }
+            let ray = BvhRay::new(Vec3A::from(o), Vec3A::from(d), 0.0, t_max);
+            for nodes in [&bvh.bvh.nodes, &bvh.shadow_nodes] {
+                let near_first = any_hit::<false>(nodes, &bvh.ordered, query, &ray, &mut stack);
+                let stored = any_hit::<true>(nodes, &bvh.ordered, query, &ray, &mut stack);
+                assert_eq!(near_first.0, expected.is_some(), "ray {i}");
+                assert_eq!(stored.0, expected.is_some(), "ray {i}");
+            }
+            blocked += expected.is_some() as usize;
+        }
+        assert!(
+            hits > 500 && blocked < 1900,
+            "{hits} hits, {blocked} blocked"
+        );
     }
 }

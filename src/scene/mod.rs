@@ -6,6 +6,7 @@
 pub mod accel;
 pub mod bvh;
 pub mod camera;
+pub mod cwbvh_walk;
 pub mod effects;
 pub mod embree;
 pub mod envmap;

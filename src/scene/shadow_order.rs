@@ -1,8 +1,9 @@
 //! The order in which a shadow ray visits a CWBVH node's children.
 //!
-//! A closest-hit query visits children near to far (the CWBVH's octant order, Ylitie et
-//! al. 2017), so that the closest hit found early culls what lies behind it. A shadow ray
-//! stops at the first hit anywhere on its segment, and near to far is then a guess that
+//! A closest-hit query visits children near to far (by the distance at which the ray
+//! enters their boxes, [`crate::scene::cwbvh_walk`]), so that the closest hit found early
+//! culls what lies behind it. A shadow ray stops at the first hit anywhere on its segment,
+//! and near to far is then a guess that
 //! the blocker lies near the ray's origin: where the light sits in a fixture (a lamp's
 //! shade, a recessed bulb), the blocker lies near the far end, and the traversal visits
 //! everything along the way first.
@@ -18,15 +19,16 @@
 //! meets a box `B` meets a convex `K` inside it with probability `area(K) / area(B)`
 //! (Cauchy), a triangle's area counting twice (both sides); a node's cost counts each
 //! child's work times the chance that the ray enters it and nothing tested before it
-//! blocked the ray (its leaves first, as obvhs' traversal tests a node's leaves before
+//! blocked the ray (its leaves first, as the shadow walk tests a node's leaves before
 //! descending, then its inner children in their order).
 //!
 //! The order is the same for every ray; the copy holds only the nodes (the triangles and
-//! their order are shared), and is traversed with the octant code 0, so that a node's
-//! children are taken from its highest slot down. Which order a scene's shadow rays take is
+//! their order are shared), and a node's inner children are taken from its highest slot
+//! down. Which order a scene's shadow rays take is
 //! chosen per kind of shadow ray ([`Toward`]) when the scene is built
 //! (`Bvh::choose_shadow_order`).
 
+use crate::scene::cwbvh_walk::{inner_child, is_inner};
 use obvhs::aabb::Aabb;
 use obvhs::cwbvh::node::CwBvhNode;
 
@@ -78,16 +80,6 @@ pub const RTSAH_MARGIN: f64 = 0.9;
 
 /// The expected work of testing one node's children, in units of one triangle test.
 const NODE_COST: f32 = 1.0;
-
-/// Whether child `slot` of `node` is an inner node.
-fn is_inner(node: &CwBvhNode, slot: usize) -> bool {
-    node.imask & (1 << slot) != 0
-}
-
-/// The index in the node array of inner child `slot` of `node`.
-fn inner_child(node: &CwBvhNode, slot: usize) -> usize {
-    node.child_base_idx as usize + (node.imask as u32 & ((1u32 << slot) - 1)).count_ones() as usize
-}
 
 /// Half the surface area of `b` (0 for a box with a negative extent).
 fn half_area(b: &Aabb) -> f32 {
