@@ -37,7 +37,7 @@ fn shadow_queries(
             "embree",
             Box::new(|o, d, t| accel.unoccluded(Toward::Light, o, d, t)),
         )],
-        Accel::Cwbvh(b) => [ShadowOrder::NearFirst, ShadowOrder::Rtsah]
+        Accel::Cwbvh(b) => ShadowOrder::ALL
             .into_iter()
             .map(|order| {
                 let q: Box<dyn Fn(glam::Vec3, glam::Vec3, f32) -> bool + '_> =
@@ -187,18 +187,17 @@ fn axis_aligned_rays_with_negative_zeros_hit() {
 }
 
 /// The CWBVH chooses each kind of shadow ray's order from probe rays, and the choice is the
-/// cheaper one where the orders differ most: on desk, rays toward the camera take the RTSAH
-/// order and test more than 10% fewer nodes and triangles (the margin that takes RTSAH);
-/// on door, whose light is behind a wall (blockers near the rays' origins), rays toward
-/// the light stay near first, which tests at least a quarter fewer. The scenes as loaded on
-/// the CWBVH carry the same choice, and door's, where neither kind takes RTSAH, has freed
-/// the copy of the nodes.
+/// cheaper one where the orders differ most: on desk, rays toward the camera take the
+/// far-reaching order; on door, whose light is behind a wall (blockers near the rays'
+/// origins), rays toward the light stay near first; each tests at least a fifth fewer
+/// nodes and triangles than the other order. The scenes as loaded on the CWBVH carry the
+/// same choice.
 #[test]
 fn shadow_rays_take_the_cheaper_order() {
     use footprint::scene::accel::set_backend;
-    for (name, toward, expected, saving) in [
-        ("desk", Toward::Camera, ShadowOrder::Rtsah, 0.9),
-        ("door", Toward::Light, ShadowOrder::NearFirst, 0.75),
+    for (name, toward, expected) in [
+        ("desk", Toward::Camera, ShadowOrder::FarReaching),
+        ("door", Toward::Light, ShadowOrder::NearFirst),
     ] {
         let scene = load_scene(&scene_path(name)).unwrap();
         let mut accel = Accel::build_with(&scene.triangles, Backend::Cwbvh).unwrap();
@@ -211,13 +210,10 @@ fn shadow_rays_take_the_cheaper_order() {
         let (order, visits) = accel.choose_shadow_order(toward, &segments).unwrap();
         assert_eq!(order, expected, "{name}: visits per ray {visits:?}");
         let (cheaper, dearer) = match expected {
-            ShadowOrder::Rtsah => (visits[1], visits[0]),
+            ShadowOrder::FarReaching => (visits[1], visits[0]),
             ShadowOrder::NearFirst => (visits[0], visits[1]),
         };
-        assert!(
-            cheaper < saving * dearer,
-            "{name}: visits per ray {visits:?}"
-        );
+        assert!(cheaper < 0.8 * dearer, "{name}: visits per ray {visits:?}");
         // As loaded (this test's process only: nextest runs each test in its own).
         set_backend(Backend::Cwbvh);
         let loaded = load_scene(&scene_path(name)).unwrap();
@@ -225,12 +221,5 @@ fn shadow_rays_take_the_cheaper_order() {
             panic!("{name}: the CWBVH was asked for");
         };
         assert_eq!(b.shadow_order(toward), expected, "{name} as loaded");
-        assert_eq!(
-            b.keeps_shadow_nodes(),
-            [Toward::Light, Toward::Camera]
-                .map(|k| b.shadow_order(k))
-                .contains(&ShadowOrder::Rtsah),
-            "{name}: the copy kept only where used"
-        );
     }
 }

@@ -102,7 +102,7 @@ pub fn run(scenes: &[(String, Scene)], seconds: f64) -> anyhow::Result<()> {
             let segments = scene.probe_shadow_segments(toward);
             if let Some((order, visits)) = cwbvh.choose_shadow_order(toward, &segments) {
                 println!(
-                    "{name}: shadow rays toward {}: {} (nodes and triangles tested per probe ray: near first {:.2}, RTSAH {:.2})",
+                    "{name}: shadow rays toward {}: {} (nodes and triangles tested per probe ray: near first {:.2}, far-reaching first {:.2})",
                     toward.describe(),
                     order.describe(),
                     visits[0],

@@ -140,13 +140,6 @@ impl Accel {
             Accel::Cwbvh(b) => Some(b.choose_shadow_order(toward, segments)),
         }
     }
-
-    /// Frees what the chosen shadow-ray orders do not use ([`Bvh::release_unused_shadow_nodes`]).
-    pub fn release_unused_shadow_nodes(&mut self) {
-        if let Accel::Cwbvh(b) = self {
-            b.release_unused_shadow_nodes();
-        }
-    }
 }
 
 #[cfg(test)]

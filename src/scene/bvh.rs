@@ -19,7 +19,7 @@
 
 use crate::scene::cwbvh_walk::{MAX_TRIANGLES, any_hit, closest_hit, stack_entries, with_stack};
 use crate::scene::geometry::TriangleGeom;
-use crate::scene::shadow_order::{RTSAH_MARGIN, ShadowOrder, Toward};
+use crate::scene::shadow_order::{ShadowOrder, Toward};
 use glam::{Vec3, Vec3A};
 use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::node::CwBvhNode;
@@ -65,9 +65,6 @@ fn query_ray(origin: Vec3, dir: Vec3, t_max: f32) -> (Vec3, Vec3, BvhRay) {
 
 pub struct Bvh {
     bvh: CwBvh,
-    /// The nodes as shadow rays visit them in [`ShadowOrder::Rtsah`] (`shadow_order`);
-    /// empty when neither kind of shadow ray takes that order.
-    shadow_nodes: Vec<CwBvhNode>,
     /// The order [`Bvh::unoccluded`] takes, by [`Toward`].
     shadow_orders: [ShadowOrder; 2],
     /// `ordered[i]` is triangle `original[i]`, in the BVH's primitive order.
@@ -101,13 +98,9 @@ impl Bvh {
         );
         let original: Vec<u32> = bvh.primitive_indices.clone();
         let ordered: Vec<TriangleGeom> = original.iter().map(|&i| triangles[i as usize]).collect();
-        let shadow_nodes = crate::scene::shadow_order::shadow_nodes(&bvh.nodes, |p| {
-            0.5 * ordered[p].cross().length()
-        });
         Bvh {
             stack_entries: stack_entries(&bvh.nodes),
             bvh,
-            shadow_nodes,
             shadow_orders: [ShadowOrder::NearFirst; 2],
             ordered,
             original,
@@ -141,22 +134,15 @@ impl Bvh {
     /// differs.
     #[inline]
     pub fn unoccluded(&self, toward: Toward, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
-        match self.shadow_orders[toward as usize] {
-            ShadowOrder::NearFirst => self.shadow_query::<false>(origin, dir, t_max).0,
-            ShadowOrder::Rtsah => {
-                // Only chosen while the copy is kept (a choice made after
-                // `release_unused_shadow_nodes` measures near first twice).
-                debug_assert!(!self.shadow_nodes.is_empty());
-                self.shadow_query::<true>(origin, dir, t_max).0
-            }
-        }
+        self.unoccluded_in(self.shadow_orders[toward as usize], origin, dir, t_max)
+            .0
     }
 
     /// Chooses the order of [`Bvh::unoccluded`] for shadow rays `toward` a light or the
     /// camera: the one that tests fewer nodes and triangles over `segments` (origin,
     /// direction, length: a sample of the scene's shadow rays of that kind), near first on a
-    /// tie or a saving of at most 10% ([`RTSAH_MARGIN`]). Returns the choice and the nodes and
-    /// triangles tested per segment in each order (near first, RTSAH).
+    /// tie. Returns the choice and the nodes and triangles tested per segment in each order
+    /// (as [`ShadowOrder::ALL`] lists them).
     pub fn choose_shadow_order(
         &mut self,
         toward: Toward,
@@ -164,31 +150,18 @@ impl Bvh {
     ) -> (ShadowOrder, [f64; 2]) {
         let mut visits = [0u64; 2];
         for &(o, d, t) in segments {
-            visits[0] += self.unoccluded_in(ShadowOrder::NearFirst, o, d, t).1 as u64;
-            visits[1] += self.unoccluded_in(ShadowOrder::Rtsah, o, d, t).1 as u64;
+            for (v, order) in visits.iter_mut().zip(ShadowOrder::ALL) {
+                *v += self.unoccluded_in(order, o, d, t).1 as u64;
+            }
         }
-        let order = if (visits[1] as f64) < RTSAH_MARGIN * visits[0] as f64 {
-            ShadowOrder::Rtsah
+        let order = if visits[1] < visits[0] {
+            ShadowOrder::FarReaching
         } else {
             ShadowOrder::NearFirst
         };
         self.shadow_orders[toward as usize] = order;
         let n = segments.len().max(1) as f64;
-        (order, [visits[0] as f64 / n, visits[1] as f64 / n])
-    }
-
-    /// Frees the RTSAH copy of the nodes when neither kind of shadow ray takes that order
-    /// (call after [`Bvh::choose_shadow_order`] for both kinds); [`Bvh::unoccluded_in`]
-    /// then takes near first for either order.
-    pub fn release_unused_shadow_nodes(&mut self) {
-        if !self.shadow_orders.contains(&ShadowOrder::Rtsah) {
-            self.shadow_nodes = Vec::new();
-        }
-    }
-
-    /// Whether the RTSAH copy of the nodes is kept.
-    pub fn keeps_shadow_nodes(&self) -> bool {
-        !self.shadow_nodes.is_empty()
+        (order, visits.map(|v| v as f64 / n))
     }
 
     /// The order shadow rays `toward` a light or the camera take.
@@ -197,7 +170,7 @@ impl Bvh {
     }
 
     /// [`Bvh::unoccluded`] in the given order, and the nodes and triangles it tested.
-    #[inline]
+    #[inline(always)]
     pub fn unoccluded_in(
         &self,
         order: ShadowOrder,
@@ -205,32 +178,12 @@ impl Bvh {
         dir: Vec3,
         t_max: f32,
     ) -> (bool, u32) {
-        match order {
-            ShadowOrder::Rtsah if !self.shadow_nodes.is_empty() => {
-                self.shadow_query::<true>(origin, dir, t_max)
-            }
-            _ => self.shadow_query::<false>(origin, dir, t_max),
-        }
-    }
-
-    /// The shadow-ray walk over the closest-hit nodes (near first) or over the RTSAH copy
-    /// (in its stored order), and the nodes and triangles it tested.
-    #[inline(always)]
-    fn shadow_query<const RTSAH: bool>(&self, origin: Vec3, dir: Vec3, t_max: f32) -> (bool, u32) {
         let (start, dir, ray) = query_ray(origin, dir, t_max);
-        let nodes = if RTSAH {
-            &self.shadow_nodes
-        } else {
-            &self.bvh.nodes
-        };
-        let (blocked, tested) = with_stack(self.stack_entries, |stack| {
-            any_hit::<RTSAH>(
-                nodes,
-                &self.ordered,
-                (start, dir, ORIGIN_BACKOFF),
-                &ray,
-                stack,
-            )
+        let query = (start, dir, ORIGIN_BACKOFF);
+        let (nodes, triangles) = (&self.bvh.nodes, &self.ordered);
+        let (blocked, tested) = with_stack(self.stack_entries, |stack| match order {
+            ShadowOrder::NearFirst => any_hit::<false>(nodes, triangles, query, &ray, stack),
+            ShadowOrder::FarReaching => any_hit::<true>(nodes, triangles, query, &ray, stack),
         });
         (!blocked, tested)
     }
@@ -239,9 +192,9 @@ impl Bvh {
         self.bvh.nodes.len()
     }
 
-    /// Bytes held by the nodes (both orders'), the reordered triangles and the index map.
+    /// Bytes held by the nodes, the reordered triangles and the index map.
     pub fn memory_bytes(&self) -> usize {
-        (self.bvh.nodes.len() + self.shadow_nodes.len()) * std::mem::size_of::<CwBvhNode>()
+        self.bvh.nodes.len() * std::mem::size_of::<CwBvhNode>()
             + self.ordered.len() * std::mem::size_of::<TriangleGeom>()
             + self.original.len() * 4
             + self.bvh.primitive_indices.len() * 4
@@ -262,78 +215,6 @@ mod tests {
                 TriangleGeom::new(c, c + (p() - 0.5) * size(i), c + (p() - 0.5) * size(i))
             })
             .collect()
-    }
-
-    /// The leaves under node `i` of `nodes`: each leaf child's world box and its first
-    /// primitive and count; asserts that each inner child's node has its children inside
-    /// the box its slot gives it (to one quantisation step of the child's grid, the
-    /// rounding of its own boxes), so that a slot cannot point at another child's node.
-    fn leaves(nodes: &[CwBvhNode], i: usize, out: &mut Vec<([u32; 6], u32, u32)>) {
-        let node = &nodes[i];
-        for s in 0..8 {
-            let meta = node.child_meta[s];
-            if meta == 0 {
-                continue;
-            }
-            if node.imask & (1 << s) != 0 {
-                let child = node.child_base_idx as usize
-                    + (node.imask as u32 & ((1u32 << s) - 1)).count_ones() as usize;
-                let b = node.child_aabb(s);
-                let c = &nodes[child];
-                let tol = c.compute_extent() + 1e-5 * (1.0 + b.max.abs().max(b.min.abs()));
-                for t in (0..8).filter(|&t| c.child_meta[t] != 0) {
-                    let cb = c.child_aabb(t);
-                    assert!(
-                        (b.min - tol).cmple(cb.min).all() && cb.max.cmple(b.max + tol).all(),
-                        "node {i} slot {s}: child {child}'s box {cb:?} outside {b:?}"
-                    );
-                }
-                leaves(nodes, child, out);
-            } else {
-                let b = node.child_aabb(s);
-                let bits = [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z].map(f32::to_bits);
-                out.push((
-                    bits,
-                    node.primitive_base_idx + (meta & 0x1f) as u32,
-                    (meta >> 5).count_ones(),
-                ));
-            }
-        }
-    }
-
-    /// The shadow rays' copy of the nodes is the same tree with each node's children in
-    /// another order: the same leaves (boxes and triangles) under the root, each inner
-    /// slot pointing at its own child's node, leaves in the lowest slots and inner children
-    /// above them in every node (a soup of 3000 triangles of mixed sizes, so that nodes mix
-    /// leaves and inner children).
-    #[test]
-    fn the_shadow_copy_holds_the_same_tree() {
-        let mut rng = Rng::new(32, 0, 0);
-        let tris = soup(&mut rng, 3000, |i| if i % 10 == 0 { 4.0 } else { 0.3 });
-        let bvh = Bvh::build(&tris);
-        assert_eq!(bvh.bvh.nodes.len(), bvh.shadow_nodes.len());
-        let (mut a, mut b) = (Vec::new(), Vec::new());
-        leaves(&bvh.bvh.nodes, 0, &mut a);
-        leaves(&bvh.shadow_nodes, 0, &mut b);
-        a.sort_unstable();
-        b.sort_unstable();
-        assert!(a.len() > 500, "{} leaves", a.len());
-        assert_eq!(a, b);
-        let mut reordered = 0;
-        for (i, node) in bvh.shadow_nodes.iter().enumerate() {
-            let used = node.child_meta.iter().filter(|&&m| m != 0).count();
-            let inner = node.imask.count_ones() as usize;
-            // Leaves in slots 0.., inner children in the slots after them, none empty between.
-            assert_eq!(
-                node.imask as usize,
-                ((1usize << inner) - 1) << (used - inner),
-                "node {i}"
-            );
-            assert!(node.child_meta[used..].iter().all(|&m| m == 0), "node {i}");
-            let original = &bvh.bvh.nodes[i];
-            reordered += (node.child_meta != original.child_meta) as usize;
-        }
-        assert!(reordered > 10, "only {reordered} nodes reordered");
     }
 
     /// The walks on a stack of exactly `stack_entries` entries (a slice: one more would
@@ -376,12 +257,11 @@ mod tests {
                 (e, f) => panic!("ray {i}: every triangle {e:?}, the walk {f:?}"),
             }
             let ray = BvhRay::new(Vec3A::from(o), Vec3A::from(d), 0.0, t_max);
-            for nodes in [&bvh.bvh.nodes, &bvh.shadow_nodes] {
-                let near_first = any_hit::<false>(nodes, &bvh.ordered, query, &ray, &mut stack);
-                let stored = any_hit::<true>(nodes, &bvh.ordered, query, &ray, &mut stack);
-                assert_eq!(near_first.0, expected.is_some(), "ray {i}");
-                assert_eq!(stored.0, expected.is_some(), "ray {i}");
-            }
+            let nodes = &bvh.bvh.nodes;
+            let near_first = any_hit::<false>(nodes, &bvh.ordered, query, &ray, &mut stack);
+            let far_reaching = any_hit::<true>(nodes, &bvh.ordered, query, &ray, &mut stack);
+            assert_eq!(near_first.0, expected.is_some(), "ray {i}");
+            assert_eq!(far_reaching.0, expected.is_some(), "ray {i}");
             blocked += expected.is_some() as usize;
         }
         assert!(

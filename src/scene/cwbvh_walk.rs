@@ -10,8 +10,8 @@
 //! again, however far behind the hit its box lies.)
 //!
 //! A shadow ray stops at its first blocker: each node's leaves are tested first, then its
-//! inner children are taken near first, or in the order they are stored in for the RTSAH
-//! copy of the nodes ([`crate::scene::shadow_order`]), the same for every ray.
+//! inner children are taken near first or far-reaching first
+//! ([`crate::scene::shadow_order`]).
 
 use crate::scene::geometry::TriangleGeom;
 use glam::Vec3;
@@ -108,23 +108,25 @@ pub fn with_stack<R>(entries: usize, f: impl FnOnce(&mut [Pending]) -> R) -> R {
 }
 
 /// The children of `node` the ray enters within `[NODE_EPSILON, ray.tmax]`, as a mask over
-/// the node's eight slots, and the distance at which the ray enters each slot's box.
+/// the node's eight slots, and the distances at which the ray enters and leaves each slot's
+/// box (within that interval).
 ///
 /// The slab test is obvhs' `intersect_ray_simd` operation for operation: the quantised
 /// planes (bytes) widened to floats, scaled by the node's power-of-two extent and offset,
 /// four children at a time, so the same children are entered.
 #[cfg(all(target_arch = "x86_64", target_feature = "sse4.1"))]
 #[inline(always)]
-pub fn child_entries(node: &CwBvhNode, ray: &BvhRay) -> (u32, [f32; 8]) {
+pub fn child_entries(node: &CwBvhNode, ray: &BvhRay) -> (u32, [f32; 8], [f32; 8]) {
     use std::arch::x86_64::*;
     let extent = node.compute_extent();
     let scale = extent * ray.inv_direction;
     let offset = (Vec3A::from(node.p) - ray.origin) * ray.inv_direction;
     let mut t_enter = [0.0f32; 8];
+    let mut t_leave = [0.0f32; 8];
     let mut mask = 0u32;
     // SAFETY: SSE4.1 is enabled for this build (the cfg above); the loads read plain
     // integers out of the node's byte arrays, and each store writes four floats into
-    // `t_enter[4 * half..4 * half + 4]`.
+    // `t_enter[4 * half..4 * half + 4]` or `t_leave[4 * half..4 * half + 4]`.
     unsafe {
         let planes = |bytes: &[u8; 8], half: usize| -> __m128 {
             let word = u32::from_le_bytes([
@@ -182,22 +184,24 @@ pub fn child_entries(node: &CwBvhNode, ray: &BvhRay) -> (u32, [f32; 8]) {
             let t_far = _mm_min_ps(t_far, _mm_set1_ps(ray.tmax));
             mask |= (_mm_movemask_ps(_mm_cmple_ps(t_near, t_far)) as u32) << (4 * half);
             _mm_storeu_ps(t_enter.as_mut_ptr().add(4 * half), t_near);
+            _mm_storeu_ps(t_leave.as_mut_ptr().add(4 * half), t_far);
         }
         // Empty slots (meta 0) hold no child, whatever their planes.
         let meta = _mm_cvtsi64_si128(i64::from_le_bytes(node.child_meta));
         let empty = _mm_movemask_epi8(_mm_cmpeq_epi8(meta, _mm_setzero_si128())) as u32;
-        (mask & !empty & 0xff, t_enter)
+        (mask & !empty & 0xff, t_enter, t_leave)
     }
 }
 
 /// Without SSE4.1: the same slab test (obvhs' `intersect_ray_basic`), a child at a time.
 #[cfg(not(all(target_arch = "x86_64", target_feature = "sse4.1")))]
 #[inline(always)]
-pub fn child_entries(node: &CwBvhNode, ray: &BvhRay) -> (u32, [f32; 8]) {
+pub fn child_entries(node: &CwBvhNode, ray: &BvhRay) -> (u32, [f32; 8], [f32; 8]) {
     let scale = node.compute_extent() * ray.inv_direction;
     let offset = (Vec3A::from(node.p) - ray.origin) * ray.inv_direction;
     let negative = ray.direction.cmplt(Vec3A::ZERO);
     let mut t_enter = [0.0f32; 8];
+    let mut t_leave = [0.0f32; 8];
     let mut mask = 0u32;
     for slot in (0..8).filter(|&s| node.child_meta[s] != 0) {
         let lo = vec3a(
@@ -215,13 +219,14 @@ pub fn child_entries(node: &CwBvhNode, ray: &BvhRay) -> (u32, [f32; 8]) {
         let t_near = near.max_element().max(NODE_EPSILON);
         let t_far = far.min_element().min(ray.tmax);
         t_enter[slot] = t_near;
+        t_leave[slot] = t_far;
         mask |= u32::from(t_near <= t_far) << slot;
     }
-    (mask, t_enter)
+    (mask, t_enter, t_leave)
 }
 
 /// Pushes `(item, t)` onto `stack[..*top]`, keeping `stack[first..]` ordered by decreasing
-/// `t` (the nearest on top).
+/// `t` (the smallest on top).
 #[inline(always)]
 fn push_in_order(stack: &mut [Pending], first: usize, top: &mut usize, item: u32, t: f32) {
     let mut at = *top;
@@ -255,7 +260,7 @@ pub fn closest_hit(
     loop {
         if current & LEAF == 0 {
             let node = &nodes[current as usize];
-            let (mut entered, t_enter) = child_entries(node, ray);
+            let (mut entered, t_enter, _) = child_entries(node, ray);
             if entered != 0 && entered & (entered - 1) == 0 {
                 // One child entered: straight to it.
                 current = item(node, entered.trailing_zeros() as usize);
@@ -297,10 +302,11 @@ pub fn closest_hit(
 }
 
 /// Whether a triangle blocks the query ray within `t_min < t < ray.tmax`, and the nodes and
-/// triangles the walk tested. With `STORED_ORDER`, inner children are taken from the
-/// highest slot down (the RTSAH copy's order), else near first.
+/// triangles the walk tested. A node's leaves are tested first, then its inner children
+/// are taken near first, or with `FAR_REACHING` the one whose box the ray leaves last
+/// first ([`crate::scene::shadow_order::ShadowOrder`]).
 #[inline(always)]
-pub fn any_hit<const STORED_ORDER: bool>(
+pub fn any_hit<const FAR_REACHING: bool>(
     nodes: &[CwBvhNode],
     triangles: &[TriangleGeom],
     (origin, dir, t_min): (Vec3, Vec3, f32),
@@ -313,7 +319,7 @@ pub fn any_hit<const STORED_ORDER: bool>(
     loop {
         let node = &nodes[current];
         tested += 1;
-        let (entered, t_enter) = child_entries(node, ray);
+        let (entered, t_enter, t_leave) = child_entries(node, ray);
         let mut leaves = entered & !(node.imask as u32);
         while leaves != 0 {
             let slot = leaves.trailing_zeros() as usize;
@@ -334,14 +340,13 @@ pub fn any_hit<const STORED_ORDER: bool>(
         while inner != 0 {
             let slot = inner.trailing_zeros() as usize;
             inner &= inner - 1;
-            let child = inner_child(node, slot) as u32;
-            if STORED_ORDER {
-                // Slots in increasing order: the highest ends on top.
-                stack[top] = Pending::new((child, 0.0));
-                top += 1;
+            // The smallest key is taken first.
+            let key = if FAR_REACHING {
+                -t_leave[slot]
             } else {
-                push_in_order(stack, first, &mut top, child, t_enter[slot]);
-            }
+                t_enter[slot]
+            };
+            push_in_order(stack, first, &mut top, inner_child(node, slot) as u32, key);
         }
         if top == 0 {
             return (false, tested);
@@ -374,9 +379,9 @@ mod tests {
     /// `child_entries` enters exactly the children obvhs' own node test enters, for every
     /// node of a CWBVH over a random soup of 2000 triangles and rays from random points in
     /// random directions (axis-aligned ones included, whose reciprocals are huge), with
-    /// finite and infinite ends; and each entered child's entry distance is where the ray
-    /// enters the child's box (the slab test in f64 on the dequantised box, to a relative
-    /// 1e-4 of the box's size).
+    /// finite and infinite ends; and each entered child's entry and exit distances are
+    /// where the ray enters and leaves the child's box (the slab test in f64 on the
+    /// dequantised box, to a relative 1e-4 of the box's size).
     #[test]
     fn child_entries_enter_the_children_obvhs_enters() {
         let mut rng = Rng::new(31, 0, 0);
@@ -410,7 +415,7 @@ mod tests {
             let ray = BvhRay::new(o, d, 0.0, t_max);
             let oct_inv4 = bvh.new_traversal(ray.direction).oct_inv4;
             for node in &bvh.nodes {
-                let (mask, t_enter) = child_entries(node, &ray);
+                let (mask, t_enter, t_leave) = child_entries(node, &ray);
                 let theirs = node.intersect_ray(&ray, oct_inv4);
                 let ours = (0..8)
                     .filter(|&s| mask & (1 << s) != 0)
@@ -419,21 +424,35 @@ mod tests {
                 for slot in (0..8).filter(|&s| mask & (1 << s) != 0) {
                     entered += 1;
                     let b = node.child_aabb(slot);
+                    // The slab's entry and exit along axis `a` (both infinite for a
+                    // direction without that component: the ray is inside the slab).
                     let slab = |a: usize| {
                         let (lo, hi) = (b.min[a] as f64, b.max[a] as f64);
                         let (o, d) = (o[a] as f64, d[a] as f64);
                         if d == 0.0 {
-                            f64::NEG_INFINITY
+                            (f64::NEG_INFINITY, f64::INFINITY)
                         } else {
-                            ((lo - o) / d).min((hi - o) / d)
+                            let (u, v) = ((lo - o) / d, (hi - o) / d);
+                            (u.min(v), u.max(v))
                         }
                     };
-                    let exact = slab(0).max(slab(1)).max(slab(2)).max(NODE_EPSILON as f64);
+                    let (x, y, z) = (slab(0), slab(1), slab(2));
+                    let enter = x.0.max(y.0).max(z.0).max(NODE_EPSILON as f64);
+                    let leave = x.1.min(y.1).min(z.1).min(t_max as f64);
                     let size = (b.max - b.min).max_element().max(1e-3) as f64;
+                    let close = |ours: f32, exact: f64| {
+                        exact.is_infinite() && ours as f64 == exact
+                            || (ours as f64 - exact).abs() <= 1e-4 * size + 1e-4 * exact.abs()
+                    };
                     assert!(
-                        (t_enter[slot] as f64 - exact).abs() <= 1e-4 * size + 1e-4 * exact.abs(),
-                        "ray {i}: entry {} against {exact}",
+                        close(t_enter[slot], enter),
+                        "ray {i}: entry {} against {enter}",
                         t_enter[slot]
+                    );
+                    assert!(
+                        close(t_leave[slot], leave),
+                        "ray {i}: exit {} against {leave}",
+                        t_leave[slot]
                     );
                 }
             }

@@ -314,9 +314,6 @@ impl Scene {
                 }
             }
         }
-        if let Some(bvh) = Arc::get_mut(&mut scene.bvh) {
-            bvh.release_unused_shadow_nodes();
-        }
         Ok(scene)
     }
 
