@@ -76,8 +76,9 @@ fn item(node: &CwBvhNode, slot: usize) -> u32 {
     }
 }
 
-/// The stack entries a walk over `nodes` needs at most: a node's visit pushes its entered
-/// children and takes one of them, so at most 7 per level below the root, and one.
+/// The stack entries a walk over `nodes` needs at most: a visit to an inner node pushes at
+/// most its 8 children and takes one of them at once, so at most 7 wait per level of inner
+/// nodes above the one visited, which pushes 8: `7 (levels - 1) + 8`.
 pub fn stack_entries(nodes: &[CwBvhNode]) -> usize {
     if nodes.is_empty() {
         return 1;
@@ -92,7 +93,7 @@ pub fn stack_entries(nodes: &[CwBvhNode]) -> usize {
             todo.push((inner_child(node, slot), level + 1));
         }
     }
-    7 * (depth - 1) + 1
+    7 * depth + 1
 }
 
 /// A stack of `Pending` items over `STACK_ENTRIES` entries on the machine stack, or over
@@ -461,5 +462,56 @@ mod tests {
             entered > 1000,
             "too few children entered ({entered}) to test anything"
         );
+    }
+
+    /// `stack_entries` covers a visit that pushes all eight children: eight triangles in a
+    /// row, far apart, under one node with a leaf in each slot, and a ray along the row
+    /// that enters every leaf's box. The closest-hit walk runs on a stack of exactly
+    /// `stack_entries` entries (a slice: a ninth push would panic) and finds the first.
+    #[test]
+    fn the_stack_holds_a_visit_that_enters_every_child() {
+        let tris: Vec<BvhTriangle> = (0..8)
+            .map(|i| {
+                let c = Vec3A::new(10.0 * i as f32, 0.0, 0.0);
+                BvhTriangle {
+                    v0: c + Vec3A::new(0.0, -1.0, -1.0),
+                    v1: c + Vec3A::new(0.0, 1.0, -1.0),
+                    v2: c + Vec3A::new(0.0, 0.0, 1.0),
+                }
+            })
+            .collect();
+        let bvh = build_cwbvh_from_tris(
+            &tris,
+            BvhBuildParams::medium_build(),
+            &mut Duration::default(),
+        );
+        assert_eq!(bvh.nodes.len(), 1, "one node holds the eight leaves");
+        assert_eq!(
+            bvh.nodes[0].child_meta.iter().filter(|&&m| m != 0).count(),
+            8
+        );
+        assert_eq!(stack_entries(&bvh.nodes), 8);
+        let ordered: Vec<TriangleGeom> = bvh
+            .primitive_indices
+            .iter()
+            .map(|&i| {
+                let t = &tris[i as usize];
+                TriangleGeom::new(t.v0.into(), t.v1.into(), t.v2.into())
+            })
+            .collect();
+        let origin = Vec3::new(-5.0, 0.0, 0.0);
+        let mut ray = BvhRay::new(origin.into(), Vec3A::X, 0.0, f32::INFINITY);
+        let (entered, _, _) = child_entries(&bvh.nodes[0], &ray);
+        assert_eq!(entered, 0xff);
+        let mut stack = vec![Pending::uninit(); 8];
+        let hit = closest_hit(
+            &bvh.nodes,
+            &ordered,
+            (origin, Vec3::X, 0.0),
+            &mut ray,
+            &mut stack,
+        );
+        assert!(hit.is_some());
+        assert!((ray.tmax - 5.0).abs() < 1e-5, "hit at {}", ray.tmax);
     }
 }
