@@ -1,6 +1,6 @@
 //! The acceleration structure: a compressed wide BVH (CWBVH, Ylitie et al. 2017) built by
-//! `obvhs` over the scene's triangles. Triangles are stored in the BVH's leaf
-//! order so a leaf's triangles are contiguous in memory.
+//! `obvhs` over the scene's triangles. Triangles are stored in the BVH's leaf order so a
+//! leaf's triangles are contiguous in memory.
 //!
 //! obvhs culls CWBVH nodes whose box the ray leaves before `t = 1e-4` (a fixed epsilon in its
 //! node test), which would miss surfaces closer than that to a ray's origin: in a corner, a
@@ -13,9 +13,9 @@
 //! which the ray enters their boxes, a pending child dropped once the closest hit lies
 //! before its box.
 //!
-//! Shadow rays visit inner children near first, as closest hits do, or in the order of a
-//! reordered copy of the nodes (by blocking chance, [`crate::scene::shadow_order`]),
-//! whichever tests fewer nodes on the scene's own shadow rays ([`Bvh::choose_shadow_order`]).
+//! Shadow rays visit inner children near first, as closest hits do, or far-reaching first
+//! ([`crate::scene::shadow_order`]), whichever tests fewer nodes and triangles on the
+//! scene's own shadow rays ([`Bvh::choose_shadow_order`]).
 
 use crate::scene::cwbvh_walk::{MAX_TRIANGLES, any_hit, closest_hit, stack_entries, with_stack};
 use crate::scene::geometry::TriangleGeom;
