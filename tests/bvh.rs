@@ -130,7 +130,7 @@ fn bvh_matches_brute_force_on_every_scene() {
     }
 }
 
-/// Surfaces very close to a ray's origin are found (obvhs' CWBVH node test alone culls boxes
+/// Surfaces very close to a ray's origin are found (the CWBVH's node test alone culls boxes
 /// left before t = 1e-4, which would let rays in corners pass through walls).
 #[test]
 fn surfaces_close_to_the_origin_are_hit() {

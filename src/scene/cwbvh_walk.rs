@@ -514,4 +514,70 @@ mod tests {
         assert!(hit.is_some());
         assert!((ray.tmax - 5.0).abs() < 1e-5, "hit at {}", ray.tmax);
     }
+
+    /// The levels of inner nodes under node `i`, counted recursively.
+    fn levels(nodes: &[CwBvhNode], i: usize) -> usize {
+        let node = &nodes[i];
+        1 + (0..8)
+            .filter(|&s| node.child_meta[s] != 0 && is_inner(node, s))
+            .map(|s| levels(nodes, inner_child(node, s)))
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// `stack_entries` is `7 levels + 1` on a tree of several levels (2000 triangles in a
+    /// 10 m cube), the levels counted recursively here.
+    #[test]
+    fn stack_entries_count_seven_per_level_and_one() {
+        let mut rng = Rng::new(34, 0, 0);
+        let tris: Vec<BvhTriangle> = (0..2000)
+            .map(|_| {
+                let c = Vec3A::new(rng.uniform(), rng.uniform(), rng.uniform()) * 10.0;
+                BvhTriangle {
+                    v0: c,
+                    v1: c + Vec3A::X * 0.2,
+                    v2: c + Vec3A::Y * 0.2,
+                }
+            })
+            .collect();
+        let bvh = build_cwbvh_from_tris(
+            &tris,
+            BvhBuildParams::medium_build(),
+            &mut Duration::default(),
+        );
+        let depth = levels(&bvh.nodes, 0);
+        assert!(depth >= 3, "{depth} levels test little");
+        assert_eq!(stack_entries(&bvh.nodes), 7 * depth + 1);
+    }
+
+    /// `push_in_order` keeps each node's run ordered with the smallest key on top, above
+    /// and apart from what was pushed before: eight random keys pushed above two entries
+    /// pop in increasing order, then the two come back as they were.
+    #[test]
+    fn pushes_keep_the_smallest_key_on_top() {
+        let mut rng = Rng::new(35, 0, 0);
+        let mut stack = vec![Pending::uninit(); 10];
+        let mut top = 0;
+        push_in_order(&mut stack, 0, &mut top, 100, 5.0);
+        push_in_order(&mut stack, 0, &mut top, 101, 9.0);
+        let first = top;
+        for item in 0..8 {
+            push_in_order(&mut stack, first, &mut top, item, rng.uniform());
+        }
+        assert_eq!(top, 10);
+        let mut popped = Vec::new();
+        while top > 0 {
+            top -= 1;
+            // SAFETY: the entries below `top` are written.
+            popped.push(unsafe { stack[top].assume_init() });
+        }
+        let run: Vec<f32> = popped[..8].iter().map(|e| e.1).collect();
+        assert!(run.windows(2).all(|w| w[0] <= w[1]), "{run:?}");
+        let mut items: Vec<u32> = popped[..8].iter().map(|e| e.0).collect();
+        items.sort_unstable();
+        assert_eq!(items, (0..8).collect::<Vec<_>>());
+        // The earlier run, ordered within itself: 5.0 on top of 9.0.
+        assert_eq!(popped[8], (100, 5.0));
+        assert_eq!(popped[9], (101, 9.0));
+    }
 }
