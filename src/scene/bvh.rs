@@ -155,11 +155,9 @@ impl Bvh {
                 *v += self.unoccluded_in(order, o, d, t).1 as u64;
             }
         }
-        let order = if visits[1] < visits[0] {
-            ShadowOrder::FarReaching
-        } else {
-            ShadowOrder::NearFirst
-        };
+        // The first of the fewest (near first on a tie).
+        let best = (1..visits.len()).fold(0, |b, i| if visits[i] < visits[b] { i } else { b });
+        let order = ShadowOrder::ALL[best];
         self.shadow_orders[toward as usize] = order;
         let n = segments.len().max(1) as f64;
         (order, visits.map(|v| v as f64 / n))

@@ -41,38 +41,15 @@ pub const STACK_ENTRIES: usize = 256;
 /// enters its box.
 pub type Pending = MaybeUninit<(u32, f32)>;
 
-/// Whether child `slot` of `node` is an inner node.
-#[inline(always)]
-pub fn is_inner(node: &CwBvhNode, slot: usize) -> bool {
-    node.imask & (1 << slot) != 0
-}
-
-/// The index in the node array of inner child `slot` of `node`.
-#[inline(always)]
-pub fn inner_child(node: &CwBvhNode, slot: usize) -> usize {
-    node.child_base_idx as usize + (node.imask as u32 & ((1u32 << slot) - 1)).count_ones() as usize
-}
-
-/// The first triangle (position in the BVH's primitive order) and the count of leaf
-/// child `slot` of `node` (its meta byte: the offset in the low 5 bits, the count in
-/// unary in the high 3).
-#[inline(always)]
-pub fn leaf_triangles(node: &CwBvhNode, slot: usize) -> (u32, u32) {
-    let meta = node.child_meta[slot] as u32;
-    (
-        node.primitive_base_idx + (meta & 31),
-        (meta >> 5).count_ones(),
-    )
-}
-
-/// Child `slot` of `node` as a pending item.
+/// Child `slot` of `node` (occupied) as a pending item: an inner node's index, or a leaf's
+/// first triangle (position in the BVH's primitive order) and count.
 #[inline(always)]
 fn item(node: &CwBvhNode, slot: usize) -> u32 {
-    if is_inner(node, slot) {
-        inner_child(node, slot) as u32
-    } else {
-        let (first, count) = leaf_triangles(node, slot);
+    if node.is_leaf(slot) {
+        let (first, count) = node.child_primitives(slot);
         LEAF | first << 2 | count
+    } else {
+        node.child_node_index(slot)
     }
 }
 
@@ -89,8 +66,8 @@ pub fn stack_entries(nodes: &[CwBvhNode]) -> usize {
     while let Some((i, level)) = todo.pop() {
         depth = depth.max(level);
         let node = &nodes[i];
-        for slot in (0..8).filter(|&s| node.child_meta[s] != 0 && is_inner(node, s)) {
-            todo.push((inner_child(node, slot), level + 1));
+        for slot in (0..8).filter(|&s| !node.is_child_empty(s) && !node.is_leaf(s)) {
+            todo.push((node.child_node_index(slot) as usize, level + 1));
         }
     }
     7 * depth + 1
@@ -325,7 +302,7 @@ pub fn any_hit<const FAR_REACHING: bool>(
         while leaves != 0 {
             let slot = leaves.trailing_zeros() as usize;
             leaves &= leaves - 1;
-            let (first, count) = leaf_triangles(node, slot);
+            let (first, count) = node.child_primitives(slot);
             for id in first as usize..(first + count) as usize {
                 tested += 1;
                 if triangles[id]
@@ -347,7 +324,7 @@ pub fn any_hit<const FAR_REACHING: bool>(
             } else {
                 t_enter[slot]
             };
-            push_in_order(stack, first, &mut top, inner_child(node, slot) as u32, key);
+            push_in_order(stack, first, &mut top, node.child_node_index(slot), key);
         }
         if top == 0 {
             return (false, tested);
@@ -519,8 +496,8 @@ mod tests {
     fn levels(nodes: &[CwBvhNode], i: usize) -> usize {
         let node = &nodes[i];
         1 + (0..8)
-            .filter(|&s| node.child_meta[s] != 0 && is_inner(node, s))
-            .map(|s| levels(nodes, inner_child(node, s)))
+            .filter(|&s| node.child_meta[s] != 0 && node.imask & (1 << s) != 0)
+            .map(|s| levels(nodes, node.child_node_index(s) as usize))
             .max()
             .unwrap_or(0)
     }
