@@ -76,7 +76,12 @@ pub struct Bvh {
 }
 
 impl Bvh {
-    /// Builds the BVH over `triangles` (at least one).
+    /// Builds the BVH over `triangles` (at least one): obvhs' `medium_build` (PLOC with
+    /// reinsertion) with its spatial pre-splits, which give a triangle whose box is large
+    /// several tight boxes over its parts (a leaf may then list a triangle another leaf lists
+    /// too). Long thin triangles, a lamp shade's fan, otherwise overlap in boxes that every
+    /// ray near them enters: Veach Bidir's next-event rays test 21 triangles each without
+    /// the splits (docs/measurements/speed.md).
     pub fn build(triangles: &[TriangleGeom]) -> Self {
         assert!(!triangles.is_empty(), "a BVH needs at least one triangle");
         assert!(
@@ -94,8 +99,17 @@ impl Bvh {
             .collect();
         let bvh = build_cwbvh_from_tris(
             &tris,
-            BvhBuildParams::medium_build(),
+            BvhBuildParams {
+                pre_split: true,
+                ..BvhBuildParams::medium_build()
+            },
             &mut Duration::default(),
+        );
+        // The leaves address the list of references, which the pre-splits lengthen.
+        assert!(
+            bvh.primitive_indices.len() < MAX_TRIANGLES,
+            "the CWBVH holds fewer than 2^29 triangle references ({} after pre-splits)",
+            bvh.primitive_indices.len()
         );
         let original: Vec<u32> = bvh.primitive_indices.clone();
         let ordered: Vec<TriangleGeom> = original.iter().map(|&i| triangles[i as usize]).collect();
@@ -219,7 +233,8 @@ mod tests {
     /// The walks on a stack of exactly `stack_entries` entries (a slice: one more would
     /// panic) over a soup of 3000 triangles of mixed sizes find what a loop over every
     /// triangle finds, for 2000 random rays: the closest hit's distance, and whether
-    /// anything blocks a segment, in either order.
+    /// anything blocks a segment, in either order. The large triangles are pre-split, so
+    /// that leaves list some triangles more than once.
     #[test]
     fn walks_find_what_a_loop_over_every_triangle_finds() {
         use crate::sampling::sample_uniform_sphere;
@@ -227,6 +242,11 @@ mod tests {
         let mut rng = Rng::new(33, 0, 0);
         let tris = soup(&mut rng, 3000, |i| if i % 10 == 0 { 4.0 } else { 0.3 });
         let bvh = Bvh::build(&tris);
+        assert!(
+            bvh.original.len() > tris.len(),
+            "no triangle pre-split: {} references",
+            bvh.original.len()
+        );
         let mut stack = vec![Pending::uninit(); bvh.stack_entries];
         let (mut hits, mut blocked) = (0, 0);
         for i in 0..2000 {
