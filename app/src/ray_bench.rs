@@ -15,7 +15,7 @@
 use footprint::rng::Rng;
 use footprint::sampling::sample_cosine_hemisphere;
 use footprint::scene::Scene;
-use footprint::scene::accel::{Accel, Backend, Toward};
+use footprint::scene::accel::{Accel, Backend, ShadowOrder, Toward};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -101,12 +101,16 @@ pub fn run(scenes: &[(String, Scene)], seconds: f64) -> anyhow::Result<()> {
         for toward in [Toward::Light, Toward::Camera] {
             let segments = scene.probe_shadow_segments(toward);
             if let Some((order, visits)) = cwbvh.choose_shadow_order(toward, &segments) {
+                let per_order: Vec<String> = ShadowOrder::ALL
+                    .iter()
+                    .zip(visits)
+                    .map(|(o, v)| format!("{} {v:.2}", o.describe()))
+                    .collect();
                 println!(
-                    "{name}: shadow rays toward {}: {} (nodes and triangles tested per probe ray: near first {:.2}, far-reaching first {:.2})",
+                    "{name}: shadow rays toward {}: {} (nodes and triangles tested per probe ray: {})",
                     toward.describe(),
                     order.describe(),
-                    visits[0],
-                    visits[1]
+                    per_order.join(", ")
                 );
             }
         }

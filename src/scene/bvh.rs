@@ -68,9 +68,8 @@ pub struct Bvh {
     bvh: CwBvh,
     /// The order [`Bvh::unoccluded`] takes, by [`Toward`].
     shadow_orders: [ShadowOrder; 2],
-    /// `ordered[i]` is triangle `original[i]`, in the BVH's primitive order.
+    /// `ordered[i]` is triangle `bvh.primitive_indices[i]`, in the BVH's primitive order.
     ordered: Vec<TriangleGeom>,
-    original: Vec<u32>,
     /// The entries a walk's stack needs ([`stack_entries`]).
     stack_entries: usize,
 }
@@ -111,14 +110,14 @@ impl Bvh {
             "the CWBVH holds fewer than 2^29 triangle references ({} after pre-splits)",
             bvh.primitive_indices.len()
         );
-        let original: Vec<u32> = bvh.primitive_indices.clone();
-        let ordered: Vec<TriangleGeom> = original.iter().map(|&i| triangles[i as usize]).collect();
+        let ordered: Vec<TriangleGeom> = (bvh.primitive_indices.iter())
+            .map(|&i| triangles[i as usize])
+            .collect();
         Bvh {
             stack_entries: stack_entries(&bvh.nodes),
             bvh,
             shadow_orders: [ShadowOrder::NearFirst; 2],
             ordered,
-            original,
         }
     }
 
@@ -136,7 +135,7 @@ impl Bvh {
             )
         });
         hit.map(|(id, b1, b2)| BvhHit {
-            triangle: self.original[id as usize],
+            triangle: self.bvh.primitive_indices[id as usize],
             t: (ray.tmax - ORIGIN_BACKOFF).max(f32::MIN_POSITIVE),
             b1,
             b2,
@@ -209,7 +208,6 @@ impl Bvh {
     pub fn memory_bytes(&self) -> usize {
         self.bvh.nodes.len() * std::mem::size_of::<CwBvhNode>()
             + self.ordered.len() * std::mem::size_of::<TriangleGeom>()
-            + self.original.len() * 4
             + self.bvh.primitive_indices.len() * 4
     }
 }
@@ -243,9 +241,9 @@ mod tests {
         let tris = soup(&mut rng, 3000, |i| if i % 10 == 0 { 4.0 } else { 0.3 });
         let bvh = Bvh::build(&tris);
         assert!(
-            bvh.original.len() > tris.len(),
+            bvh.ordered.len() > tris.len(),
             "no triangle pre-split: {} references",
-            bvh.original.len()
+            bvh.ordered.len()
         );
         let mut stack = vec![Pending::uninit(); bvh.stack_entries];
         let (mut hits, mut blocked) = (0, 0);
