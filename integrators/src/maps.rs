@@ -7,11 +7,12 @@
 //! run whenever a cache is built.
 
 use crate::method::Method;
+use crate::passes::thinning::{PARTICLES_PER_REGION, thinned_by_cell};
 use crate::passes::{
     PassOutput, PassSettings, grow_light_pass, light_pass, seed_paths, view_pass_seeding,
 };
 use crate::skips::Skip;
-use footprint::guide::cache::{CacheStats, GuideCache, Seed};
+use footprint::guide::cache::{CacheStats, GuideCache, Partition, Seed};
 use footprint::guide::particle_map::{MapKind, ParticleInput, ParticleMap};
 use footprint::guide::sampler::{GuideSource, GuidedSampler};
 use footprint::scene::{Scene, Toward};
@@ -27,6 +28,9 @@ pub struct BuiltMap {
     pub pass: PassOutput,
     /// Heap bytes the map keeps (tree and records), when measured.
     pub bytes: Option<usize>,
+    /// When the map holds the pass's particles thinned by region (`passes::thinning`): how
+    /// many were kept of how many, and the thinning's time.
+    pub thinned: Option<(usize, usize, Duration)>,
 }
 
 impl BuiltMap {
@@ -36,8 +40,15 @@ impl BuiltMap {
             Some(b) if n > 0 => format!("{:.1} bytes/particle", b as f64 / n as f64),
             _ => format!("{} bytes/record", ParticleMap::RECORD_BYTES),
         };
+        let thinned = match self.thinned {
+            Some((kept, all, t)) => format!(
+                " (thinned by region: {kept} of {all} kept, {:.2} s)",
+                t.as_secs_f64()
+            ),
+            None => String::new(),
+        };
         format!(
-            "{}: {} particles from {} paths, {}, pass {:.2} s, build {:.3} s",
+            "{}: {} particles from {} paths{thinned}, {}, pass {:.2} s, build {:.3} s",
             self.map.kind.name(),
             n,
             self.pass.stats.paths,
@@ -48,23 +59,32 @@ impl BuiltMap {
     }
 }
 
-/// Builds the map of a pass's particles (those of depth `min_depth` or more); `measure` returns the heap bytes currently
-/// allocated (a counting allocator), so the map's own size is the difference around the
-/// build.
+/// Builds the map of a pass's particles (those of depth `min_depth` or more), or of
+/// `thinned`, the pass's particles thinned by region (`passes::thinning`), when given;
+/// `measure` returns the heap bytes currently allocated (a counting allocator), so the
+/// map's own size is the difference around the build.
 pub fn build_map(
     kind: MapKind,
     pass: PassOutput,
+    thinned: Option<Vec<ParticleInput>>,
     min_depth: u16,
     measure: &dyn Fn() -> Option<usize>,
 ) -> BuiltMap {
     let before = measure();
-    let map = ParticleMap::build_from_depth(kind, &pass.particles, min_depth);
+    let particles = thinned.as_deref().unwrap_or(&pass.particles);
+    let map = ParticleMap::build_from_depth(kind, particles, min_depth);
     let after = measure();
+    drop(thinned);
     let bytes = match (before, after) {
         (Some(b), Some(a)) => Some(a.saturating_sub(b)),
         _ => None,
     };
-    BuiltMap { map, pass, bytes }
+    BuiltMap {
+        map,
+        pass,
+        bytes,
+        thinned: None,
+    }
 }
 
 /// Where the time before rendering went.
@@ -594,12 +614,30 @@ fn build_with_cache(
     summaries: &mut Vec<String>,
     heap: &dyn Fn() -> Option<usize>,
 ) -> (BuiltMap, Option<GuideCache>) {
-    let built = build_map(kind, out, params.min_depth, heap);
-    timings.map_builds += built.map.build_time;
+    let max_dist = scene.map_max_dist();
+    // The cache's regions first, so that the map holds only what they can read
+    // (`passes::thinning`, "Thinning by region").
+    let partition = seeds.map(|s| Partition::new(&s, params, max_dist));
+    let start = Instant::now();
+    let thinned = partition.as_ref().and_then(|p| {
+        thinned_by_cell(
+            &out.particles,
+            out.stats.thinning,
+            p.cells(),
+            |q| p.cell(q.position, q.normal),
+            PARTICLES_PER_REGION * params.region_particles,
+        )
+    });
+    let thinning = start.elapsed();
+    let kept = thinned
+        .as_ref()
+        .map(|t| (t.len(), out.particles.len(), thinning));
+    let mut built = build_map(kind, out, thinned, params.min_depth, heap);
+    built.thinned = kept;
+    timings.map_builds += built.map.build_time + thinning;
     summaries.push(built.summary());
-    let cache = seeds.map(|s| {
-        let max_dist = scene.map_max_dist();
-        let c = GuideCache::build(&built.map, method.guide, &s, params, max_dist);
+    let cache = partition.map(|partition| {
+        let c = GuideCache::from_partition(&built.map, method.guide, partition, params, max_dist);
         timings.cache_builds += c.stats.build_time;
         summaries.push(format!("{} cache: {}", kind.name(), c.stats.summary()));
         c

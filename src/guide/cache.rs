@@ -194,16 +194,22 @@ struct Job {
     radius: f32,
 }
 
-impl GuideCache {
-    /// Builds the cache of `map` for `guide` over the other pass's scattering points
-    /// `seeds`; `max_dist` is the map's query distance.
-    pub fn build(
-        map: &ParticleMap,
-        guide: &dyn Guide,
-        seeds: &[Seed],
-        params: &GuideParams,
-        max_dist: f32,
-    ) -> Self {
+/// The regions' tree before their distributions: where each region is, from the seeds
+/// alone. A render builds it first, so that the map's particles can be counted per region
+/// before the map is built (`integrators/src/passes/thinning.rs`, "Thinning by region").
+pub struct Partition {
+    nodes: Vec<PackedNode>,
+    entry: EntryGrid,
+    leaves: Vec<[u32; 6]>,
+    jobs: Vec<Job>,
+    seeds: usize,
+    build_time: Duration,
+}
+
+impl Partition {
+    /// Splits the other pass's scattering points `seeds` into regions (`max_dist`: the
+    /// map's query distance, the widest a leaf may be).
+    pub fn new(seeds: &[Seed], params: &GuideParams, max_dist: f32) -> Self {
         let start = Instant::now();
         let mut seeds: Vec<Seed> = seeds
             .iter()
@@ -221,6 +227,88 @@ impl GuideCache {
         } else {
             split(&mut seeds, params.region_seeds, max_dist, PARALLEL_SEEDS)
         };
+        let entry = EntryGrid::build(&nodes, lo, hi, leaves.len());
+        Partition {
+            nodes,
+            entry,
+            leaves,
+            jobs,
+            seeds: n_seeds,
+            build_time: start.elapsed(),
+        }
+    }
+
+    /// The cells a point may fall in: six normal buckets per leaf of the tree (a cell holds
+    /// at most one region, and every point of space falls in one cell).
+    pub fn cells(&self) -> usize {
+        6 * self.leaves.len().max(1)
+    }
+
+    /// The cell of a point `x` on a surface of side normal `n`, in `0..self.cells()`.
+    #[inline]
+    pub fn cell(&self, x: Vec3, n: Vec3) -> usize {
+        6 * leaf_of(&self.nodes, &self.entry, x).unwrap_or(0) + normal_bucket(n)
+    }
+}
+
+/// The leaf of the region tree `nodes` holding `x` (a descent from the node `entry` gives).
+#[inline(always)]
+fn leaf_of(nodes: &[PackedNode], entry: &EntryGrid, x: Vec3) -> Option<usize> {
+    // The coordinate of a split's axis read by index from an array rather than by glam's
+    // `Index`, whose match becomes a jump table that mispredicts at every node.
+    let xs = [x.x, x.y, x.z, 0.0];
+    let mut i = entry.start_node(x);
+    loop {
+        let node = *nodes.get(i)?;
+        let (axis, index) = node.decode();
+        if axis == LEAF {
+            return Some(index as usize);
+        }
+        i = if xs[(axis & 3) as usize] < node.split {
+            i + 1
+        } else {
+            index as usize
+        };
+    }
+}
+
+impl GuideCache {
+    /// Builds the cache of `map` for `guide` over the other pass's scattering points
+    /// `seeds`; `max_dist` is the map's query distance.
+    pub fn build(
+        map: &ParticleMap,
+        guide: &dyn Guide,
+        seeds: &[Seed],
+        params: &GuideParams,
+        max_dist: f32,
+    ) -> Self {
+        Self::from_partition(
+            map,
+            guide,
+            Partition::new(seeds, params, max_dist),
+            params,
+            max_dist,
+        )
+    }
+
+    /// Builds the regions of `partition` from `map` (the cache [`GuideCache::build`]
+    /// builds, its partition made beforehand; its time counts in the cache's).
+    pub fn from_partition(
+        map: &ParticleMap,
+        guide: &dyn Guide,
+        partition: Partition,
+        params: &GuideParams,
+        max_dist: f32,
+    ) -> Self {
+        let start = Instant::now();
+        let Partition {
+            nodes,
+            entry,
+            leaves,
+            jobs,
+            seeds: n_seeds,
+            build_time: partition_time,
+        } = partition;
         let regions: Vec<Region> = jobs
             .par_iter()
             .map(|job| build_region(map, guide, params, max_dist, job))
@@ -229,7 +317,6 @@ impl GuideCache {
             .iter()
             .filter(|r| r.distribution.is_some())
             .collect();
-        let entry = EntryGrid::build(&nodes, lo, hi, leaves.len());
         let heap_bytes = nodes.capacity() * std::mem::size_of::<PackedNode>()
             + entry.start.capacity() * 4
             + regions.len() * std::mem::size_of::<RegionSummary>()
@@ -254,7 +341,7 @@ impl GuideCache {
             guiding: guiding.len(),
             particles: guiding.iter().map(|r| r.particles as u64).sum(),
             heap_bytes,
-            build_time: start.elapsed(),
+            build_time: partition_time + start.elapsed(),
         };
         GuideCache {
             nodes,
@@ -276,23 +363,9 @@ impl GuideCache {
     /// The index in [`GuideCache::regions`] of the region [`GuideCache::lookup`] finds.
     #[inline]
     pub fn lookup_index(&self, x: Vec3, n: Vec3) -> Option<u32> {
-        // The coordinate of a split's axis read by index from an array rather than by
-        // glam's `Index`, whose match becomes a jump table that mispredicts at every node.
-        let xs = [x.x, x.y, x.z, 0.0];
-        let mut i = self.entry.start_node(x);
-        loop {
-            let node = *self.nodes.get(i)?;
-            let (axis, index) = node.decode();
-            if axis == LEAF {
-                let r = self.leaves[index as usize][normal_bucket(n)];
-                return (r != NONE).then_some(r);
-            }
-            i = if xs[(axis & 3) as usize] < node.split {
-                i + 1
-            } else {
-                index as usize
-            };
-        }
+        let leaf = leaf_of(&self.nodes, &self.entry, x)?;
+        let r = self.leaves[leaf][normal_bucket(n)];
+        (r != NONE).then_some(r)
     }
 
     pub fn regions(&self) -> &[Region] {

@@ -68,6 +68,15 @@ fn sparse_photon_maps_grow_within_a_budget() {
     assert_eq!(grown.grown, Some((20_000, paths)), "the growth is reported");
     // Neither the generous budget nor the path limit stops it: every doubling is taken.
     assert_eq!(paths, 20_000 << footprint_integrators::maps::MAX_GROWTHS);
+    // Most of the grown map's photons land in the lit room, where few regions are: the map
+    // holds a share of them (`passes::thinning`, "Thinning by region").
+    let (kept, all, _) = grown
+        .photons
+        .as_ref()
+        .unwrap()
+        .thinned
+        .expect("thinned by region");
+    assert!(2 * kept <= all, "{kept} of {all} kept");
     let after = grown.photon_cache.as_ref().unwrap();
     assert!(
         after.stats.guiding > cache.stats.guiding,
