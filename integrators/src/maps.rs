@@ -7,7 +7,7 @@
 //! run whenever a cache is built.
 
 use crate::method::Method;
-use crate::passes::thinning::{PARTICLES_PER_REGION, thinned_by_cell};
+use crate::passes::thinning::{Cells, PARTICLES_PER_REGION, thinned_by_cell};
 use crate::passes::{
     PassOutput, PassSettings, grow_light_pass, light_pass, seed_paths, view_pass_seeding,
 };
@@ -620,13 +620,13 @@ fn build_with_cache(
     let partition = seeds.map(|s| Partition::new(&s, params, max_dist));
     let start = Instant::now();
     let thinned = partition.as_ref().and_then(|p| {
-        thinned_by_cell(
-            &out.particles,
-            out.stats.thinning,
-            p.cells(),
-            |q| p.cell(q.position, q.normal),
-            PARTICLES_PER_REGION * params.region_particles,
-        )
+        let cells = Cells {
+            count: p.cells(),
+            of: |q: &ParticleInput| p.cell(q.position, q.normal),
+            centre: |c| p.centre(c),
+        };
+        let per_cell = PARTICLES_PER_REGION * params.region_particles;
+        thinned_by_cell(&out.particles, out.stats.thinning, cells, per_cell)
     });
     let thinning = start.elapsed();
     let kept = thinned

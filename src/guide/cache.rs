@@ -249,6 +249,13 @@ impl Partition {
     pub fn cell(&self, x: Vec3, n: Vec3) -> usize {
         6 * leaf_of(&self.nodes, &self.entry, x).unwrap_or(0) + normal_bucket(n)
     }
+
+    /// The centre of the region in `cell` (where its distribution is built, from the
+    /// particles nearest it), if the cell holds one.
+    pub fn centre(&self, cell: usize) -> Option<Vec3> {
+        let r = *self.leaves.get(cell / 6)?.get(cell % 6)?;
+        (r != NONE).then(|| self.jobs[r as usize].centre)
+    }
 }
 
 /// The leaf of the region tree `nodes` holding `x` (a descent from the node `entry` gives).

@@ -25,15 +25,17 @@
 //! where a map is far denser than its regions most of its particles are never read, yet
 //! each costs its share of the map's build: on door, whose lit room holds 99.6% of the
 //! photons and few of the camera paths' questions, the photon map of 1.6M light paths took
-//! 2.5 s to build. Before a cached map is built its particles are counted per cell of the
-//! cache's partition (a leaf of the region tree and a normal bucket: at most one region),
-//! and a cell holding more than [`PARTICLES_PER_REGION`] times `region_particles` is thinned
-//! by the same rule at its own level, over the pass's: the least `j` that brings its
-//! expected count within, its kept particles' weights times `2^j` ([`thinned_by_cell`]).
-//! Each cell's sums stay what they were in expectation, the sparse cells (where guiding
-//! needs every particle) keep all of theirs, and the particles kept do not depend on the
-//! thread count. Finding each particle's cell has a cost of its own, so a map is thinned
-//! only where a sixteenth of its particles says that half or more would go.
+//! 3.9 s to build. Before a cached map is built its particles are counted per cell of the
+//! cache's partition (a leaf of the region tree and a normal bucket: at most one region).
+//! In a cell holding more than twice `PARTICLES_PER_REGION · region_particles`, the
+//! `PARTICLES_PER_REGION · region_particles` nearest the cell's region's centre are kept as
+//! they are, so that the region reads what it would read from the whole map, and the rest
+//! are thinned by the same rule at the cell's own level, over the pass's: the least `j`
+//! that brings their expected count within as many, their weights times `2^j`
+//! ([`thinned_by_cell`]). Each cell's sums stay what they were in expectation, the sparse
+//! cells (where guiding needs every particle) keep all of theirs, and the particles kept do
+//! not depend on the thread count. Finding each particle's cell has a cost of its own, so a
+//! map is thinned only where a sixteenth of its particles says that half or more would go.
 
 use super::pass::PassOutput;
 use footprint::guide::cache::Seed;
@@ -105,10 +107,10 @@ impl Kept<'_> {
     }
 }
 
-/// A cell is thinned past this many times the regions' `region_particles`: a region reads
-/// the nearest `region_particles` of its cell's particles, which stay spread over its
-/// cell rather than packed around its centre.
-pub const PARTICLES_PER_REGION: usize = 4;
+/// A cell is thinned past this many times the regions' `region_particles`: its region's
+/// nearest particles, this many times what it reads, are kept as they are, and at most about
+/// as many again of the rest, thinned.
+pub const PARTICLES_PER_REGION: usize = 2;
 
 /// Thinning by region is done only where it is estimated to drop at least this share of
 /// the particles: finding a particle's cell costs a quarter to a half of what a dropped
@@ -119,37 +121,63 @@ pub const MIN_DROPPED_SHARE: f64 = 0.5;
 /// The estimate of [`MIN_DROPPED_SHARE`] reads every this-many-th particle.
 const ESTIMATE_STRIDE: usize = 16;
 
+/// The cells of a cache's partition as thinning reads them.
+pub struct Cells<C, R> {
+    /// How many cells there are.
+    pub count: usize,
+    /// The cell of a particle, in `0..count`.
+    pub of: C,
+    /// The centre of the region in a cell, where the cell holds one.
+    pub centre: R,
+}
+
 /// `particles` (kept at the pass's thinning `level`) thinned where a cell holds more than
-/// `per_cell` of them: cell `c` (`cell(p)` in `0..cells`) at the least `j` with
-/// `count_c / 2^j <= per_cell`, on top of `level`, its kept weights times `2^j`. `None`
-/// when no cell holds more, or when every [`ESTIMATE_STRIDE`]-th particle says that less
-/// than [`MIN_DROPPED_SHARE`] of them would go.
-pub fn thinned_by_cell(
+/// `2 per_cell` of them. In such a cell, the `per_cell` particles nearest its region's
+/// centre are kept as they are (what the region reads: its distribution and density are
+/// those of the unthinned map), and the rest at the least `j` with `rest / 2^j <=
+/// per_cell`, on top of `level`, their weights times `2^j` (a cell without a region thins
+/// all of its particles so). `None` when no cell holds more, or when every
+/// [`ESTIMATE_STRIDE`]-th particle says that less than [`MIN_DROPPED_SHARE`] of them
+/// would go.
+pub fn thinned_by_cell<C, R>(
     particles: &[ParticleInput],
     level: u32,
-    cells: usize,
-    cell: impl Fn(&ParticleInput) -> usize + Sync,
+    cells: Cells<C, R>,
     per_cell: usize,
-) -> Option<Vec<ParticleInput>> {
+) -> Option<Vec<ParticleInput>>
+where
+    C: Fn(&ParticleInput) -> usize + Sync,
+    R: Fn(usize) -> Option<Vec3> + Sync,
+{
     let per_cell = per_cell.max(1);
-    let cell = |p: &ParticleInput| cell(p).min(cells.saturating_sub(1)) as u32;
-    // Each cell's level for its count.
-    let level_of = |n: usize| {
+    let n_cells = cells.count.max(1);
+    let cell = |p: &ParticleInput| (cells.of)(p).min(n_cells - 1) as u32;
+    // A cell's particles kept as they are, and the level of the rest, for its count.
+    let plan = |c: usize, n: usize| -> (usize, u32) {
+        if n <= 2 * per_cell {
+            return (n, 0);
+        }
+        let exact = if (cells.centre)(c).is_some() {
+            per_cell
+        } else {
+            0
+        };
         let mut j = 0u32;
-        while n >> j > per_cell && level + j < 63 {
+        while (n - exact) >> j > per_cell && level + j < 63 {
             j += 1;
         }
-        j
+        (exact, j)
+    };
+    let kept_of = |c: usize, n: usize| {
+        let (exact, j) = plan(c, n);
+        exact as f64 + (n - exact) as f64 / (1u64 << j) as f64
     };
     // The estimate: the counts of every ESTIMATE_STRIDE-th particle, scaled.
-    let mut counts = vec![0usize; cells.max(1)];
+    let mut counts = vec![0usize; n_cells];
     for p in particles.iter().step_by(ESTIMATE_STRIDE) {
         counts[cell(p) as usize] += ESTIMATE_STRIDE;
     }
-    let kept_estimate: f64 = counts
-        .iter()
-        .map(|&n| n as f64 / (1u64 << level_of(n)) as f64)
-        .sum();
+    let kept_estimate: f64 = counts.iter().enumerate().map(|(c, &n)| kept_of(c, n)).sum();
     if kept_estimate > (1.0 - MIN_DROPPED_SHARE) * particles.len() as f64 {
         return None;
     }
@@ -158,17 +186,60 @@ pub fn thinned_by_cell(
     for &c in &of {
         counts[c as usize] += 1;
     }
-    let levels: Vec<u32> = counts.iter().map(|&n| level_of(n)).collect();
-    if levels.iter().all(|&j| j == 0) {
+    let plans: Vec<(usize, u32)> = counts
+        .iter()
+        .enumerate()
+        .map(|(c, &n)| plan(c, n))
+        .collect();
+    if plans.iter().all(|&(_, j)| j == 0) {
         return None;
+    }
+    // The particles of each cell that keeps some as they are, by a counting sort of their
+    // indices; then each such cell's nearest to its centre (ties by index), in parallel.
+    let mut start = vec![0usize; n_cells + 1];
+    for c in 0..n_cells {
+        let exact = plans[c].1 > 0 && plans[c].0 > 0;
+        start[c + 1] = start[c] + if exact { counts[c] } else { 0 };
+    }
+    let mut members = vec![0u32; start[n_cells]];
+    let mut fill = start.clone();
+    for (i, &c) in of.iter().enumerate() {
+        let c = c as usize;
+        if start[c + 1] > start[c] {
+            members[fill[c]] = i as u32;
+            fill[c] += 1;
+        }
+    }
+    let mut exact = vec![false; particles.len()];
+    let nearest: Vec<Vec<u32>> = (0..n_cells)
+        .into_par_iter()
+        .filter(|&c| start[c + 1] > start[c])
+        .map(|c| {
+            let centre = (cells.centre)(c).unwrap_or(Vec3::ZERO);
+            let mut by_distance: Vec<(f32, u32)> = members[start[c]..start[c + 1]]
+                .iter()
+                .map(|&i| (particles[i as usize].position.distance_squared(centre), i))
+                .collect();
+            let k = plans[c].0;
+            by_distance
+                .select_nth_unstable_by(k - 1, |a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            by_distance[..k].iter().map(|&(_, i)| i).collect()
+        })
+        .collect();
+    for i in nearest.into_iter().flatten() {
+        exact[i as usize] = true;
     }
     Some(
         particles
             .par_iter()
             .zip(of.par_iter())
-            .filter_map(|(p, &c)| {
-                let j = levels[c as usize];
-                (j == 0 || kept(p.position, p.dir, level + j)).then(|| {
+            .zip(exact.par_iter())
+            .filter_map(|((p, &c), &exact)| {
+                let j = plans[c as usize].1;
+                if exact || j == 0 {
+                    return Some(*p);
+                }
+                kept(p.position, p.dir, level + j).then(|| {
                     let mut q = *p;
                     q.weight *= (1u64 << j) as f32;
                     q
@@ -309,17 +380,20 @@ mod tests {
         }
     }
 
-    /// Thinning by region: a cell within `per_cell` keeps every particle, bit for bit; a
-    /// dense cell keeps about `count / 2^j` (a binomial count within 5 standard deviations)
-    /// at the least `j` that brings it within, with weights summing to the cell's drawn sum
-    /// within the same bound; on a pass already thinned to level 2 the dense cell keeps
-    /// exactly what thinning the whole pass to level `2 + j` keeps.
+    /// Thinning by region: a cell within twice `per_cell` keeps every particle, bit for
+    /// bit; a dense cell with a region keeps the `per_cell` particles nearest the region's
+    /// centre bit for bit (found here by a full sort) and about `rest / 2^j` of the rest (a
+    /// binomial count within 5 standard deviations) at the least `j` that brings them within
+    /// `per_cell`, their weights summing to the rest's drawn sum within the same bound; a
+    /// dense cell without a region thins all of its particles so; on a pass already thinned
+    /// to level 2 such a cell keeps exactly what thinning the whole pass to level `2 + j`
+    /// keeps.
     #[test]
-    fn thinning_by_cell_keeps_sparse_cells_and_each_dense_cells_sum() {
-        // Cells by index: 100 particles, then 50,000, then 20,000.
+    fn thinning_by_cell_keeps_each_regions_nearest_and_each_cells_sum() {
+        // Cells by index: 100 particles, then 50,000 (with a region), then 20,000 (without).
         let all = particles(70_100);
         let bound = [100.0 * 0.37, 50_100.0 * 0.37];
-        let cell = |p: &ParticleInput| {
+        let cell_of = |p: &ParticleInput| {
             let x = p.position.x;
             if x < bound[0] - 0.1 {
                 0
@@ -329,51 +403,79 @@ mod tests {
                 2
             }
         };
+        let centre = Vec3::new(10_000.0 * 0.37, 8.0, 1.0);
+        let cells = |level_centre: Option<Vec3>| Cells {
+            count: 3,
+            of: cell_of,
+            centre: move |c| if c == 1 { level_centre } else { None },
+        };
         let per_cell = 1_000;
-        let thinned = thinned_by_cell(&all, 0, 3, cell, per_cell).expect("dense cells thin");
+        let thinned =
+            thinned_by_cell(&all, 0, cells(Some(centre)), per_cell).expect("dense cells thin");
         let in_cell = |ps: &[ParticleInput], c: usize| -> Vec<ParticleInput> {
-            ps.iter().filter(|p| cell(p) == c).copied().collect()
+            ps.iter().filter(|p| cell_of(p) == c).copied().collect()
         };
         assert_eq!(bits(&in_cell(&thinned, 0)), bits(&in_cell(&all, 0)));
-        // 50,000 / 2^6 = 781 and 20,000 / 2^5 = 625 are the first within 1,000.
-        for (c, n, j) in [(1, 50_000usize, 6u32), (2, 20_000, 5)] {
-            let kept = in_cell(&thinned, c);
+        // Cell 1's nearest to the centre, by a full sort (ties by index).
+        let mut order: Vec<usize> = (0..all.len()).filter(|&i| cell_of(&all[i]) == 1).collect();
+        order.sort_by(|&a, &b| {
+            let d = |i: usize| all[i].position.distance_squared(centre);
+            d(a).total_cmp(&d(b)).then(a.cmp(&b))
+        });
+        let nearest: Vec<ParticleInput> = {
+            let mut idx = order[..per_cell].to_vec();
+            idx.sort();
+            idx.iter().map(|&i| all[i]).collect()
+        };
+        let kept1 = in_cell(&thinned, 1);
+        let is_near = |q: &ParticleInput| nearest.iter().any(|n| n.position == q.position);
+        let (near, rest): (Vec<ParticleInput>, Vec<ParticleInput>) =
+            kept1.iter().partition(|q| is_near(q));
+        assert_eq!(bits(&near), bits(&nearest));
+        // 49,000 / 2^6 = 766 and 20,000 / 2^5 = 625 are the first within 1,000.
+        for (what, kept, n, j) in [
+            ("cell 1's rest", rest, 49_000usize, 6u32),
+            ("cell 2", in_cell(&thinned, 2), 20_000, 5),
+        ] {
             let share = 0.5f64.powi(j as i32);
             let expect = n as f64 * share;
             let sd = (n as f64 * share * (1.0 - share)).sqrt();
             assert!(
                 (kept.len() as f64 - expect).abs() < 5.0 * sd,
-                "cell {c}: {} kept",
+                "{what}: {} kept",
                 kept.len()
             );
             let sum: f64 = kept.iter().map(|q| q.weight.x as f64).sum();
             assert!(
                 (sum - n as f64).abs() < 5.0 * sd / share,
-                "cell {c}: weights sum to {sum}"
+                "{what}: weights sum to {sum}"
             );
         }
-        // On a pass at level 2: cell 1 (about 12,500 left) goes to level 2 + 4.
+        // On a pass at level 2: cell 2 (about 5,000 left) goes to level 2 + 3.
         let mut pass = all.clone();
         thin(&mut pass, &mut Vec::new(), 0, 2);
-        let thinned = thinned_by_cell(&pass, 2, 3, cell, per_cell).expect("dense cells thin");
+        let thinned =
+            thinned_by_cell(&pass, 2, cells(Some(centre)), per_cell).expect("dense cells thin");
         let mut whole = all.clone();
-        thin(&mut whole, &mut Vec::new(), 0, 6);
-        assert_eq!(bits(&in_cell(&thinned, 1)), bits(&in_cell(&whole, 1)));
+        thin(&mut whole, &mut Vec::new(), 0, 5);
+        assert_eq!(bits(&in_cell(&thinned, 2)), bits(&in_cell(&whole, 2)));
     }
 
     /// Thinning by region is skipped where it would drop less than half of the particles:
-    /// every cell within `per_cell`, or one dense cell among many sparse ones.
+    /// every cell within twice `per_cell`, or one dense cell among many sparse ones.
     #[test]
     fn thinning_by_cell_is_skipped_where_it_drops_little() {
         let all = particles(40_000);
+        let by = |size: f32, from: f32| Cells {
+            count: 40,
+            of: move |p: &ParticleInput| ((p.position.x / (size * 0.37)).max(from) - from) as usize,
+            centre: |_| None,
+        };
         // 40 cells of 1,000.
-        let even = |p: &ParticleInput| (p.position.x / (1_000.0 * 0.37)) as usize;
-        assert!(thinned_by_cell(&all, 0, 40, even, 1_000).is_none());
+        assert!(thinned_by_cell(&all, 0, by(1_000.0, 0.0), 600).is_none());
         // A cell of 10,000 (the first) among 30 of 1,000: a fifth would go.
-        let one_dense = |p: &ParticleInput| (p.position.x / (1_000.0 * 0.37)).max(9.0) as usize - 9;
-        assert!(thinned_by_cell(&all, 0, 31, one_dense, 1_000).is_none());
+        assert!(thinned_by_cell(&all, 0, by(1_000.0, 9.0), 600).is_none());
         // With every cell of 10,000, the thinning is done.
-        let dense = |p: &ParticleInput| (p.position.x / (10_000.0 * 0.37)) as usize;
-        assert!(thinned_by_cell(&all, 0, 4, dense, 1_000).is_some());
+        assert!(thinned_by_cell(&all, 0, by(10_000.0, 0.0), 600).is_some());
     }
 }
