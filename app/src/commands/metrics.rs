@@ -1,6 +1,6 @@
 //! `footprint metrics`: `compare`'s error metrics of any image against a reference.
 
-use crate::compare::{mae, rel_mse, spots};
+use crate::compare::{mae, reference_noise, rel_mse, spots};
 use anyhow::{Result, bail};
 use clap::Args;
 use footprint::film::image_io::read_exr;
@@ -15,6 +15,11 @@ pub struct MetricsArgs {
     /// Reference (EXR, same size)
     #[arg(long)]
     reference: PathBuf,
+    /// The reference's per-pixel standard error (EXR, same size; Mitsuba references carry
+    /// one beside their mean): also print what the reference's own noise adds to the
+    /// relative MSE, and the relative MSE less it
+    #[arg(long, value_name = "EXR")]
+    reference_stderr: Option<PathBuf>,
 }
 
 pub fn run(a: MetricsArgs) -> Result<()> {
@@ -30,9 +35,31 @@ pub fn run(a: MetricsArgs) -> Result<()> {
             r.height
         );
     }
+    let err = rel_mse(&x, &r);
+    let noise = match &a.reference_stderr {
+        Some(path) => {
+            let s = read_exr(path)?;
+            if (s.width, s.height) != (r.width, r.height) {
+                bail!(
+                    "{} is {}x{}, the reference {}x{}",
+                    path.display(),
+                    s.width,
+                    s.height,
+                    r.width,
+                    r.height
+                );
+            }
+            format!(
+                " reference_noise={:.6e} rel_mse_less_reference={:.6e}",
+                reference_noise(&r, &s),
+                err - reference_noise(&r, &s)
+            )
+        }
+        None => String::new(),
+    };
     println!(
-        "rel_mse={:.6e} mae={:.6e} spots={}",
-        rel_mse(&x, &r),
+        "rel_mse={:.6e} mae={:.6e} spots={}{noise}",
+        err,
         mae(&x, &r),
         spots(&x, &r)
     );

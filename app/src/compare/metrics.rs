@@ -28,6 +28,23 @@ pub fn rel_mse(x: &Image, r: &Image) -> f64 {
     }
     sum / (3 * r.pixels.len()) as f64
 }
+/// What a reference's own noise adds, in expectation, to the relative MSE of any image
+/// rendered independently of it: [`rel_mse`]'s mean with `(X - R)²` replaced by the
+/// reference's variance, `stderr` its per-pixel standard error (as Mitsuba references carry
+/// beside their mean: `tests/mitsuba-references/NAME-stderr.exr`). `E[(X - R)²] = Var X +
+/// Var R` for independent images, so `rel_mse - reference_noise` estimates the image's own
+/// error (to first order in the noise of the denominator's `R`).
+pub fn reference_noise(r: &Image, stderr: &Image) -> f64 {
+    let m = luminance(r.mean()).max(1e-20) as f64;
+    let mut sum = 0.0f64;
+    for (s, b) in stderr.pixels.iter().zip(&r.pixels) {
+        for c in 0..3 {
+            let (s, b) = (s[c] as f64 / m, b[c] as f64 / m);
+            sum += s * s / (b * b + 0.01);
+        }
+    }
+    sum / (3 * r.pixels.len()) as f64
+}
 /// Mean absolute error over pixels and channels.
 pub fn mae(x: &Image, r: &Image) -> f64 {
     let sum: f64 = x
@@ -103,4 +120,68 @@ pub fn error_image(x: &Image, r: &Image) -> Image {
 pub fn preview_exposure(r: &Image) -> f32 {
     let m = luminance(r.mean()).max(1e-12);
     (0.18 / m).log2()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use footprint::Rgb;
+    use footprint::rng::Rng;
+
+    /// A perfect image's relative MSE against a noisy reference is the reference's own noise:
+    /// a reference of 40,000 pixels drawn as the truth plus Gaussian noise of a known standard
+    /// error (5% of each value; fixed seed), the truth's `rel_mse` against it and
+    /// `reference_noise` agree within 5 standard errors of the mean of their per-term
+    /// differences `(e² - s²) / (R² + 0.01)`.
+    #[test]
+    fn a_perfect_image_measures_the_references_own_noise() {
+        let (w, h) = (200u32, 200u32);
+        let mut rng = Rng::new(3, 0, 0);
+        let mut truth = Image::new(w, h);
+        let mut reference = Image::new(w, h);
+        let mut stderr = Image::new(w, h);
+        for i in 0..(w * h) as usize {
+            let t = Rgb::new(
+                0.2 + rng.uniform(),
+                0.1 + 2.0 * rng.uniform(),
+                0.5 + rng.uniform(),
+            );
+            let s = 0.05 * t;
+            let mut gauss = || {
+                let (u1, u2) = (rng.uniform().max(1e-12), rng.uniform());
+                (-2.0 * u1.ln()).sqrt() * (std::f32::consts::TAU * u2).cos()
+            };
+            let e = Rgb::new(gauss(), gauss(), gauss()) * s;
+            truth.pixels[i] = t;
+            reference.pixels[i] = t + e;
+            stderr.pixels[i] = s;
+        }
+        let measured = rel_mse(&truth, &reference);
+        let noise = reference_noise(&reference, &stderr);
+        let m = luminance(reference.mean()) as f64;
+        let diffs: Vec<f64> = truth
+            .pixels
+            .iter()
+            .zip(&reference.pixels)
+            .zip(&stderr.pixels)
+            .flat_map(|((t, r), s)| {
+                (0..3).map(move |c| {
+                    let (t, r, s) = (t[c] as f64 / m, r[c] as f64 / m, s[c] as f64 / m);
+                    ((t - r).powi(2) - s * s) / (r * r + 0.01)
+                })
+            })
+            .collect();
+        let n = diffs.len() as f64;
+        let mean = diffs.iter().sum::<f64>() / n;
+        let sd = (diffs.iter().map(|d| (d - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+        let se = sd / n.sqrt();
+        assert!(noise > 0.0);
+        assert!(
+            (measured - noise).abs() < 5.0 * se,
+            "rel_mse {measured:.6e} against the reference's noise {noise:.6e} (se {se:.2e})"
+        );
+        // Against a reference without noise of its own, the image's error is all its own.
+        let zero = Image::new(w, h);
+        assert_eq!(reference_noise(&truth, &zero), 0.0);
+    }
 }
