@@ -18,12 +18,17 @@ pub fn missed(seconds: f64, map_seconds: f64, t: f64) -> bool {
 }
 /// Relative MSE (see the module doc).
 pub fn rel_mse(x: &Image, r: &Image) -> f64 {
+    relative_mean(x, r, |a, b| (a - b) * (a - b) / (b * b + 0.01))
+}
+
+/// The mean over pixels and channels of `term(a, b)`, `a` from `x` and `b` from the
+/// reference `r`, both divided by the reference's mean luminance.
+fn relative_mean(x: &Image, r: &Image, term: impl Fn(f64, f64) -> f64) -> f64 {
     let m = luminance(r.mean()).max(1e-20) as f64;
     let mut sum = 0.0f64;
     for (a, b) in x.pixels.iter().zip(&r.pixels) {
         for c in 0..3 {
-            let (a, b) = (a[c] as f64 / m, b[c] as f64 / m);
-            sum += (a - b) * (a - b) / (b * b + 0.01);
+            sum += term(a[c] as f64 / m, b[c] as f64 / m);
         }
     }
     sum / (3 * r.pixels.len()) as f64
@@ -35,15 +40,7 @@ pub fn rel_mse(x: &Image, r: &Image) -> f64 {
 /// Var R` for independent images, so `rel_mse - reference_noise` estimates the image's own
 /// error (to first order in the noise of the denominator's `R`).
 pub fn reference_noise(r: &Image, stderr: &Image) -> f64 {
-    let m = luminance(r.mean()).max(1e-20) as f64;
-    let mut sum = 0.0f64;
-    for (s, b) in stderr.pixels.iter().zip(&r.pixels) {
-        for c in 0..3 {
-            let (s, b) = (s[c] as f64 / m, b[c] as f64 / m);
-            sum += s * s / (b * b + 0.01);
-        }
-    }
-    sum / (3 * r.pixels.len()) as f64
+    relative_mean(stderr, r, |s, b| s * s / (b * b + 0.01))
 }
 /// Mean absolute error over pixels and channels.
 pub fn mae(x: &Image, r: &Image) -> f64 {
