@@ -60,21 +60,22 @@ impl BuiltMap {
 }
 
 /// Builds the map of a pass's particles (those of depth `min_depth` or more), or of
-/// `thinned`, the pass's particles thinned by region (`passes::thinning`), when given;
+/// `thinned`, the pass's particles thinned by region (`passes::thinning`) and the
+/// thinning's time, when given;
 /// `measure` returns the heap bytes currently allocated (a counting allocator), so the
 /// map's own size is the difference around the build.
 pub fn build_map(
     kind: MapKind,
     pass: PassOutput,
-    thinned: Option<Vec<ParticleInput>>,
+    thinned: Option<(Vec<ParticleInput>, Duration)>,
     min_depth: u16,
     measure: &dyn Fn() -> Option<usize>,
 ) -> BuiltMap {
     let before = measure();
-    let particles = thinned.as_deref().unwrap_or(&pass.particles);
+    let particles = thinned.as_ref().map_or(&pass.particles[..], |t| &t.0[..]);
     let map = ParticleMap::build_from_depth(kind, particles, min_depth);
     let after = measure();
-    drop(thinned);
+    let summary = thinned.map(|(t, time)| (t.len(), pass.particles.len(), time));
     let bytes = match (before, after) {
         (Some(b), Some(a)) => Some(a.saturating_sub(b)),
         _ => None,
@@ -83,7 +84,7 @@ pub fn build_map(
         map,
         pass,
         bytes,
-        thinned: None,
+        thinned: summary,
     }
 }
 
@@ -626,15 +627,12 @@ fn build_with_cache(
             centre: |c| p.centre(c),
         };
         let per_cell = PARTICLES_PER_REGION * params.region_particles;
-        thinned_by_cell(&out.particles, out.stats.thinning, cells, per_cell)
+        let (level, min_depth) = (out.stats.thinning, params.min_depth);
+        thinned_by_cell(&out.particles, level, min_depth, cells, per_cell)
     });
-    let thinning = start.elapsed();
-    let kept = thinned
-        .as_ref()
-        .map(|t| (t.len(), out.particles.len(), thinning));
-    let mut built = build_map(kind, out, thinned, params.min_depth, heap);
-    built.thinned = kept;
-    timings.map_builds += built.map.build_time + thinning;
+    let thinned = thinned.map(|t| (t, start.elapsed()));
+    let built = build_map(kind, out, thinned, params.min_depth, heap);
+    timings.map_builds += built.map.build_time + built.thinned.map_or(Duration::ZERO, |t| t.2);
     summaries.push(built.summary());
     let cache = partition.map(|partition| {
         let c = GuideCache::from_partition(&built.map, method.guide, partition, params, max_dist);

@@ -25,8 +25,8 @@
 //! where a map is far denser than its regions most of its particles are never read, yet
 //! each costs its share of the map's build: on door, whose lit room holds 99.6% of the
 //! photons and few of the camera paths' questions, the photon map of 1.6M light paths took
-//! 3.9 s to build. Before a cached map is built its particles are counted per cell of the
-//! cache's partition (a leaf of the region tree and a normal bucket: at most one region).
+//! 3.9 s to build. Before a cached map is built its particles (those it keeps: of depth
+//! `min_depth` or more) are counted per cell of the cache's partition (a leaf of the region tree and a normal bucket: at most one region).
 //! In a cell holding more than twice `PARTICLES_PER_REGION · region_particles`, the
 //! `PARTICLES_PER_REGION · region_particles` nearest the cell's region's centre are kept as
 //! they are, so that the region reads what it would read from the whole map, and the rest
@@ -139,10 +139,12 @@ pub struct Cells<C, R> {
 /// per_cell`, on top of `level`, their weights times `2^j` (a cell without a region thins
 /// all of its particles so). `None` when no cell holds more, or when every
 /// [`ESTIMATE_STRIDE`]-th particle says that less than [`MIN_DROPPED_SHARE`] of them
-/// would go.
+/// would go. Particles below `min_depth`, which the map leaves out, count in no cell and
+/// are dropped.
 pub fn thinned_by_cell<C, R>(
     particles: &[ParticleInput],
     level: u32,
+    min_depth: u16,
     cells: Cells<C, R>,
     per_cell: usize,
 ) -> Option<Vec<ParticleInput>>
@@ -152,7 +154,15 @@ where
 {
     let per_cell = per_cell.max(1);
     let n_cells = cells.count.max(1);
-    let cell = |p: &ParticleInput| (cells.of)(p).min(n_cells - 1) as u32;
+    // Particles the map leaves out (below `min_depth`) are in no cell, and dropped.
+    const OUT: u32 = u32::MAX;
+    let cell = |p: &ParticleInput| {
+        if p.depth < min_depth {
+            OUT
+        } else {
+            (cells.of)(p).min(n_cells - 1) as u32
+        }
+    };
     // A cell's particles kept as they are, and the level of the rest, for its count.
     let plan = |c: usize, n: usize| -> (usize, u32) {
         if n <= 2 * per_cell {
@@ -175,16 +185,19 @@ where
     };
     // The estimate: the counts of every ESTIMATE_STRIDE-th particle, scaled.
     let mut counts = vec![0usize; n_cells];
-    for p in particles.iter().step_by(ESTIMATE_STRIDE) {
-        counts[cell(p) as usize] += ESTIMATE_STRIDE;
+    for c in particles.iter().step_by(ESTIMATE_STRIDE).map(cell) {
+        if c != OUT {
+            counts[c as usize] += ESTIMATE_STRIDE;
+        }
     }
     let kept_estimate: f64 = counts.iter().enumerate().map(|(c, &n)| kept_of(c, n)).sum();
-    if kept_estimate > (1.0 - MIN_DROPPED_SHARE) * particles.len() as f64 {
+    let in_cells: usize = counts.iter().sum();
+    if kept_estimate > (1.0 - MIN_DROPPED_SHARE) * in_cells as f64 {
         return None;
     }
     let of: Vec<u32> = particles.par_iter().map(cell).collect();
     counts.iter_mut().for_each(|n| *n = 0);
-    for &c in &of {
+    for &c in of.iter().filter(|&&c| c != OUT) {
         counts[c as usize] += 1;
     }
     let plans: Vec<(usize, u32)> = counts
@@ -204,7 +217,7 @@ where
     }
     let mut members = vec![0u32; start[n_cells]];
     let mut fill = start.clone();
-    for (i, &c) in of.iter().enumerate() {
+    for (i, &c) in of.iter().enumerate().filter(|&(_, &c)| c != OUT) {
         let c = c as usize;
         if start[c + 1] > start[c] {
             members[fill[c]] = i as u32;
@@ -236,6 +249,9 @@ where
             .zip(of.par_iter())
             .zip(exact.par_iter())
             .filter_map(|((p, &c), &exact)| {
+                if c == OUT {
+                    return None;
+                }
                 let j = plans[c as usize].1;
                 if exact || j == 0 {
                     return Some(*p);
@@ -412,7 +428,7 @@ mod tests {
         };
         let per_cell = 1_000;
         let thinned =
-            thinned_by_cell(&all, 0, cells(Some(centre)), per_cell).expect("dense cells thin");
+            thinned_by_cell(&all, 0, 1, cells(Some(centre)), per_cell).expect("dense cells thin");
         let in_cell = |ps: &[ParticleInput], c: usize| -> Vec<ParticleInput> {
             ps.iter().filter(|p| cell_of(p) == c).copied().collect()
         };
@@ -456,10 +472,41 @@ mod tests {
         let mut pass = all.clone();
         thin(&mut pass, &mut Vec::new(), 0, 2);
         let thinned =
-            thinned_by_cell(&pass, 2, cells(Some(centre)), per_cell).expect("dense cells thin");
+            thinned_by_cell(&pass, 2, 1, cells(Some(centre)), per_cell).expect("dense cells thin");
         let mut whole = all.clone();
         thin(&mut whole, &mut Vec::new(), 0, 5);
         assert_eq!(bits(&in_cell(&thinned, 2)), bits(&in_cell(&whole, 2)));
+    }
+
+    /// Particles below `min_depth`, which the map leaves out, count in no cell and are
+    /// dropped: of 70,100 particles every second one at depth 1, with `min_depth` 2, a sparse
+    /// cell keeps its 50 of depth 2 bit for bit and a dense cell of 35,000 of depth 2 keeps
+    /// about 35,000 / 2^6 (within 5 binomial standard deviations; counted with its depth-1
+    /// particles, it would go to 2^7).
+    #[test]
+    fn thinning_by_cell_counts_only_what_the_map_keeps() {
+        let mut all = particles(70_100);
+        for (i, p) in all.iter_mut().enumerate() {
+            p.depth = 1 + (i % 2) as u16;
+        }
+        let cells = Cells {
+            count: 2,
+            of: |p: &ParticleInput| usize::from(p.position.x > 100.0 * 0.37 - 0.1),
+            centre: |_| None,
+        };
+        let thinned = thinned_by_cell(&all, 0, 2, cells, 1_000).expect("the dense cell thins");
+        assert!(thinned.iter().all(|p| p.depth >= 2));
+        let deep = |ps: &[ParticleInput], sparse: bool| -> Vec<ParticleInput> {
+            ps.iter()
+                .filter(|p| p.depth >= 2 && (p.position.x < 100.0 * 0.37 - 0.1) == sparse)
+                .copied()
+                .collect()
+        };
+        assert_eq!(bits(&deep(&thinned, true)), bits(&deep(&all, true)));
+        let (n, share) = (35_000.0, 0.5f64.powi(6));
+        let sd = (n * share * (1.0 - share)).sqrt();
+        let kept = deep(&thinned, false).len() as f64;
+        assert!((kept - n * share).abs() < 5.0 * sd, "{kept} kept");
     }
 
     /// Thinning by region is skipped where it would drop less than half of the particles:
@@ -473,10 +520,10 @@ mod tests {
             centre: |_| None,
         };
         // 40 cells of 1,000.
-        assert!(thinned_by_cell(&all, 0, by(1_000.0, 0.0), 600).is_none());
+        assert!(thinned_by_cell(&all, 0, 1, by(1_000.0, 0.0), 600).is_none());
         // A cell of 10,000 (the first) among 30 of 1,000: a fifth would go.
-        assert!(thinned_by_cell(&all, 0, by(1_000.0, 9.0), 600).is_none());
+        assert!(thinned_by_cell(&all, 0, 1, by(1_000.0, 9.0), 600).is_none());
         // With every cell of 10,000, the thinning is done.
-        assert!(thinned_by_cell(&all, 0, by(10_000.0, 0.0), 600).is_some());
+        assert!(thinned_by_cell(&all, 0, 1, by(10_000.0, 0.0), 600).is_some());
     }
 }
