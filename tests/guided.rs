@@ -546,3 +546,33 @@ fn light_tracing_agrees_with_path_tracing_on_the_lt_check_scene() {
         );
     }
 }
+
+/// A guide's particles arrived by `min_depth` segments or more, so a camera path's last
+/// scattering vertex (depth `max_depth - 1`, whose next vertex counts only a light it hits)
+/// gains nothing from the photon map without its direct light (`min_depth` 2): it samples
+/// its BSDF alone and looks up no region (`walk::Start::max_segments`). At `max_depth` 2 no
+/// camera vertex is prepared; one segment more, or the map with its depth-1 photons
+/// (`min_depth` 1), and vertices are.
+#[test]
+fn guiding_stops_where_no_particle_could_lead_to_a_counted_path() {
+    let scene = small("cornell", 16, 16, 20_000);
+    let prepared = |max_depth: u32, min_depth: u16| {
+        let o = RenderOptions {
+            guide_params: GuideParams {
+                min_depth,
+                ..Default::default()
+            },
+            ..opts("pt-footprint", 2, max_depth, 1)
+        };
+        render(&scene, &o, |_| {}).camera_guide.prepared
+    };
+    assert_eq!(prepared(2, 2), 0, "the last scattering vertex was prepared");
+    assert!(
+        prepared(3, 2) > 0,
+        "the first vertex of depth-3 paths was not prepared"
+    );
+    assert!(
+        prepared(2, 1) > 0,
+        "depth-1 photons did not guide the last vertex"
+    );
+}

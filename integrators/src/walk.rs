@@ -188,6 +188,12 @@ pub struct Start {
     pub beta0: Rgb,
     pub mode: TransportMode,
     pub max_vertex_depth: u32,
+    /// Most segments of the paths the walk's estimates count, a connection's included
+    /// (`max_depth`). A guide's particles all arrived by `min_depth` segments or more, so
+    /// from a vertex of depth `d` they lead only to paths of `d + min_depth` segments or
+    /// more: where that is over `max_segments` (a camera path's last scattering vertex,
+    /// which can only hit a light), the vertex samples its BSDF alone.
+    pub max_segments: u32,
     /// Russian roulette after scattering at vertices of this depth or deeper.
     pub rr_depth: u32,
 }
@@ -254,6 +260,17 @@ fn walk_from<'a, V: Visitor>(
     let beta0_max = start.beta0.max_element().max(f32::MIN_POSITIVE);
     let guided_rr = sampler.params.guided_rr;
     let split_max = sampler.params.guided_split.max(1);
+    // The deepest vertex whose guide can lead to a path the walk counts (`Start::max_segments`).
+    let guide_depth = start
+        .max_segments
+        .saturating_sub(u32::from(sampler.params.min_depth));
+    let prepare = |at: &ScatterPoint, state: &mut SamplerState<'a>, depth: u32| {
+        if depth <= guide_depth {
+            sampler.prepare(at, state);
+        } else {
+            sampler.prepare_unguided(state);
+        }
+    };
     for depth in p.depth..=start.max_vertex_depth {
         let Some(hit) = next_hit::<V::F>(scene, &mut p, rng) else {
             state.escapes += 1;
@@ -306,7 +323,7 @@ fn walk_from<'a, V: Visitor>(
         };
         let last = depth == start.max_vertex_depth;
         if !last {
-            sampler.prepare(&at, state);
+            prepare(&at, state, depth);
         }
         // The vertex's dimensions start before the visitor's work there (which may draw a
         // camera connection's lens point), then serve next-event estimation and scattering.
@@ -346,7 +363,7 @@ fn walk_from<'a, V: Visitor>(
                     &mut *rng
                 } else {
                     // The earlier branches' vertices prepared the sampler for theirs.
-                    sampler.prepare(&at, state);
+                    prepare(&at, state, depth);
                     visitor.restore(saved);
                     own = Rng::new(seed, DOMAIN_SPLIT, b as u64);
                     &mut own

@@ -285,13 +285,20 @@ impl<'a> GuidedSampler<'a> {
         }
     }
 
-    /// Prepares `state` at a scattering point.
-    pub fn prepare(&self, at: &ScatterPoint, state: &mut SamplerState<'a>) {
+    /// Prepares `state` for BSDF sampling alone at a vertex where guiding cannot pay (no
+    /// region is looked up, nothing is counted).
+    #[inline]
+    pub fn prepare_unguided(&self, state: &mut SamplerState<'a>) {
         state.prepared = Prepared::Bsdf;
         state.mix = None;
         state.region = None;
         state.density = None;
         state.p_bsdf = self.params.p_bsdf;
+    }
+
+    /// Prepares `state` at a scattering point.
+    pub fn prepare(&self, at: &ScatterPoint, state: &mut SamplerState<'a>) {
+        self.prepare_unguided(state);
         if matches!(self.source, GuideSource::Bsdf)
             || !guides_at_bsdf(at.bsdf, self.soft_glossy_max)
         {

@@ -247,6 +247,7 @@ pub fn trace<'a, F: Features, W: LightShare>(
         mode: TransportMode::Importance,
         // A connection from the n-th hit closes n + 1 segments.
         max_vertex_depth: ctx.max_depth - 1,
+        max_segments: ctx.max_depth,
         rr_depth: ctx.rr_depth,
     };
     let mut v = LightVisitor::<W, F> {

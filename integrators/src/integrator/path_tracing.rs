@@ -214,6 +214,7 @@ pub fn trace<'a, F: Features, S: CameraShare>(
         beta0: Rgb::ONE,
         mode: TransportMode::Radiance,
         max_vertex_depth: max_depth,
+        max_segments: max_depth,
         rr_depth,
     };
     walk(scene, &start, sampler, state, rng, &mut v);

@@ -53,7 +53,10 @@ fn light_paths(
             beta,
             beta0: beta,
             mode: TransportMode::Importance,
-            max_vertex_depth: s.max_depth,
+            // A photon of depth `max_depth` would close a path of `max_depth + 1` segments
+            // or more with any camera vertex it guides: it is not traced.
+            max_vertex_depth: s.max_depth.saturating_sub(1).max(1),
+            max_segments: s.max_depth,
             rr_depth: s.rr_depth,
         };
         trace::<F>(scene, s, &start, sampler, state, &mut rng, out);

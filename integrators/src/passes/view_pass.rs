@@ -74,6 +74,7 @@ pub fn view_pass_seeding(
                 beta0: Rgb::splat(w),
                 mode: TransportMode::Radiance,
                 max_vertex_depth: s.max_depth,
+                max_segments: s.max_depth,
                 rr_depth: s.rr_depth,
             };
             trace::<F>(scene, s, &start, sampler, state, &mut rng, out);
