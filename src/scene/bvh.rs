@@ -1,6 +1,6 @@
 //! The acceleration structure: a compressed wide BVH (CWBVH, Ylitie et al. 2017) built by
-//! `obvhs` over the scene's triangles. Triangles are stored in the BVH's leaf order so a
-//! leaf's triangles are contiguous in memory.
+//! `obvhs` over the scene's triangles. Each leaf's triangles are stored together, in a
+//! block of four-lane vectors, and tested at once ([`crate::scene::triangle_block`]).
 //!
 //! The node test culls boxes the ray leaves before `t = 1e-4` (obvhs' fixed epsilon, kept
 //! so that the same boxes are entered), which would miss surfaces closer than that to a
@@ -21,6 +21,7 @@
 use crate::scene::cwbvh_walk::{MAX_TRIANGLES, any_hit, closest_hit, stack_entries, with_stack};
 use crate::scene::geometry::TriangleGeom;
 use crate::scene::shadow_order::{ShadowOrder, Toward};
+use crate::scene::triangle_block::{TriangleBlock, into_blocks};
 use glam::{Vec3, Vec3A};
 use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::node::CwBvhNode;
@@ -68,8 +69,9 @@ pub struct Bvh {
     bvh: CwBvh,
     /// The order [`Bvh::unoccluded`] takes, by [`Toward`].
     shadow_orders: [ShadowOrder; 2],
-    /// `ordered[i]` is triangle `bvh.primitive_indices[i]`, in the BVH's primitive order.
-    ordered: Vec<TriangleGeom>,
+    /// The leaves' triangles, a block per leaf ([`into_blocks`]): lane `i` of block `b` is
+    /// triangle `bvh.primitive_indices[3 b + i]`.
+    blocks: Vec<TriangleBlock>,
     /// The entries a walk's stack needs ([`stack_entries`]).
     stack_entries: usize,
     /// Whether this CPU runs the walks compiled for x86-64-v3 ([`wide_walks`]).
@@ -117,7 +119,7 @@ impl Bvh {
                 v2: Vec3A::from(t.p0 + t.e2),
             })
             .collect();
-        let bvh = build_cwbvh_from_tris(
+        let mut bvh = build_cwbvh_from_tris(
             &tris,
             BvhBuildParams {
                 pre_split: true,
@@ -131,14 +133,19 @@ impl Bvh {
             "the CWBVH holds fewer than 2^29 triangle references ({} after pre-splits)",
             bvh.primitive_indices.len()
         );
-        let ordered: Vec<TriangleGeom> = (bvh.primitive_indices.iter())
-            .map(|&i| triangles[i as usize])
-            .collect();
+        let blocks = into_blocks(&mut bvh.nodes, &mut bvh.primitive_indices, |i| {
+            triangles[i as usize]
+        });
+        assert!(
+            bvh.primitive_indices.len() < MAX_TRIANGLES,
+            "the CWBVH holds fewer than 2^29 triangle lanes ({} in the leaves' blocks)",
+            bvh.primitive_indices.len()
+        );
         Bvh {
             stack_entries: stack_entries(&bvh.nodes),
             bvh,
             shadow_orders: [ShadowOrder::NearFirst; 2],
-            ordered,
+            blocks,
             wide: wide_walks(),
         }
     }
@@ -170,7 +177,7 @@ impl Bvh {
             |stack| {
                 closest_hit(
                     &self.bvh.nodes,
-                    &self.ordered,
+                    &self.blocks,
                     (start, dir, ORIGIN_BACKOFF),
                     &mut ray,
                     stack,
@@ -247,13 +254,13 @@ impl Bvh {
     ) -> (bool, u32) {
         let (start, dir, ray) = query_ray(origin, dir, t_max);
         let query = (start, dir, ORIGIN_BACKOFF);
-        let (nodes, triangles) = (&self.bvh.nodes, &self.ordered);
+        let (nodes, blocks) = (&self.bvh.nodes, &self.blocks);
         let (blocked, tested) = with_stack(
             self.stack_entries,
             #[inline(always)]
             |stack| match order {
-                ShadowOrder::NearFirst => any_hit::<false>(nodes, triangles, query, &ray, stack),
-                ShadowOrder::FarReaching => any_hit::<true>(nodes, triangles, query, &ray, stack),
+                ShadowOrder::NearFirst => any_hit::<false>(nodes, blocks, query, &ray, stack),
+                ShadowOrder::FarReaching => any_hit::<true>(nodes, blocks, query, &ray, stack),
             },
         );
         (!blocked, tested)
@@ -263,10 +270,10 @@ impl Bvh {
         self.bvh.nodes.len()
     }
 
-    /// Bytes held by the nodes, the reordered triangles and the index map.
+    /// Bytes held by the nodes, the leaves' triangle blocks and the index map.
     pub fn memory_bytes(&self) -> usize {
         self.bvh.nodes.len() * std::mem::size_of::<CwBvhNode>()
-            + self.ordered.len() * std::mem::size_of::<TriangleGeom>()
+            + self.blocks.len() * std::mem::size_of::<TriangleBlock>()
             + self.bvh.primitive_indices.len() * 4
     }
 }
@@ -299,10 +306,15 @@ mod tests {
         let mut rng = Rng::new(33, 0, 0);
         let tris = soup(&mut rng, 3000, |i| if i % 10 == 0 { 4.0 } else { 0.3 });
         let bvh = Bvh::build(&tris);
+        let references = bvh
+            .bvh
+            .primitive_indices
+            .iter()
+            .filter(|&&i| i != u32::MAX)
+            .count();
         assert!(
-            bvh.ordered.len() > tris.len(),
-            "no triangle pre-split: {} references",
-            bvh.ordered.len()
+            references > tris.len(),
+            "no triangle pre-split: {references} references"
         );
         let mut stack = vec![Pending::uninit(); bvh.stack_entries];
         let (mut hits, mut blocked) = (0, 0);
@@ -318,7 +330,7 @@ mod tests {
                 });
             let query = (o, d, 0.0);
             let mut ray = BvhRay::new(Vec3A::from(o), Vec3A::from(d), 0.0, t_max);
-            let found = closest_hit(&bvh.bvh.nodes, &bvh.ordered, query, &mut ray, &mut stack);
+            let found = closest_hit(&bvh.bvh.nodes, &bvh.blocks, query, &mut ray, &mut stack);
             match (expected, found) {
                 (None, None) => {}
                 (Some(t), Some(_)) => {
@@ -329,8 +341,8 @@ mod tests {
             }
             let ray = BvhRay::new(Vec3A::from(o), Vec3A::from(d), 0.0, t_max);
             let nodes = &bvh.bvh.nodes;
-            let near_first = any_hit::<false>(nodes, &bvh.ordered, query, &ray, &mut stack);
-            let far_reaching = any_hit::<true>(nodes, &bvh.ordered, query, &ray, &mut stack);
+            let near_first = any_hit::<false>(nodes, &bvh.blocks, query, &ray, &mut stack);
+            let far_reaching = any_hit::<true>(nodes, &bvh.blocks, query, &ray, &mut stack);
             assert_eq!(near_first.0, expected.is_some(), "ray {i}");
             assert_eq!(far_reaching.0, expected.is_some(), "ray {i}");
             blocked += expected.is_some() as usize;

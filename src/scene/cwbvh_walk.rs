@@ -13,7 +13,7 @@
 //! inner children are taken near first or far-reaching first
 //! ([`crate::scene::shadow_order`]).
 
-use crate::scene::geometry::TriangleGeom;
+use crate::scene::triangle_block::{LEAF_TRIANGLES, TriangleBlock};
 use glam::Vec3;
 use glam::Vec3A;
 #[cfg(not(all(target_arch = "x86_64", target_feature = "sse4.1")))]
@@ -222,12 +222,13 @@ fn push_in_order(stack: &mut [Pending], first: usize, top: &mut usize, item: u32
 }
 
 /// The closest hit of the query ray (`origin + t dir`, the traversal's `ray`) among the
-/// triangles (in the BVH's primitive order) within `t_min < t < ray.tmax`: the hit's
+/// leaves' triangles ([`TriangleBlock`]s, a leaf's first triangle three times its block's
+/// index) within `t_min < t < ray.tmax`: the hit's
 /// triangle position and barycentrics, with `ray.tmax` moved to its distance.
 #[inline(always)]
 pub fn closest_hit(
     nodes: &[CwBvhNode],
-    triangles: &[TriangleGeom],
+    blocks: &[TriangleBlock],
     (origin, dir, t_min): (Vec3, Vec3, f32),
     ray: &mut BvhRay,
     stack: &mut [Pending],
@@ -251,16 +252,14 @@ pub fn closest_hit(
                 push_in_order(stack, first, &mut top, item(node, slot), t_enter[slot]);
             }
         } else {
+            // The leaf's triangles at once; only a t below the closest so far is
+            // accepted, and the ray's end moves there: `best` is the closest candidate.
             let first = ((current & !LEAF) >> 2) as usize;
-            for id in first..first + (current & 3) as usize {
-                // Only a t below the closest so far is accepted, and the ray's end moves
-                // there: `best` is the closest candidate.
-                if let Some((t, b1, b2)) =
-                    triangles[id].intersect_range(origin, dir, t_min, ray.tmax)
-                {
-                    ray.tmax = t;
-                    best = Some((id as u32, b1, b2));
-                }
+            if let Some((lane, t, b1, b2)) =
+                blocks[first / LEAF_TRIANGLES].closest(origin, dir, t_min, ray.tmax)
+            {
+                ray.tmax = t;
+                best = Some(((first + lane) as u32, b1, b2));
             }
         }
         // The nearest pending child whose box begins before the closest hit so far.
@@ -286,7 +285,7 @@ pub fn closest_hit(
 #[inline(always)]
 pub fn any_hit<const FAR_REACHING: bool>(
     nodes: &[CwBvhNode],
-    triangles: &[TriangleGeom],
+    blocks: &[TriangleBlock],
     (origin, dir, t_min): (Vec3, Vec3, f32),
     ray: &BvhRay,
     stack: &mut [Pending],
@@ -303,14 +302,9 @@ pub fn any_hit<const FAR_REACHING: bool>(
             let slot = leaves.trailing_zeros() as usize;
             leaves &= leaves - 1;
             let (first, count) = node.child_primitives(slot);
-            for id in first as usize..(first + count) as usize {
-                tested += 1;
-                if triangles[id]
-                    .intersect_range(origin, dir, t_min, ray.tmax)
-                    .is_some()
-                {
-                    return (true, tested);
-                }
+            tested += count;
+            if blocks[first as usize / LEAF_TRIANGLES].any(origin, dir, t_min, ray.tmax) {
+                return (true, tested);
             }
         }
         let mut inner = entered & node.imask as u32;
@@ -340,6 +334,8 @@ mod tests {
     use super::*;
     use crate::rng::Rng;
     use crate::sampling::sample_uniform_sphere;
+    use crate::scene::geometry::TriangleGeom;
+    use crate::scene::triangle_block::into_blocks;
     use obvhs::BvhBuildParams;
     use obvhs::cwbvh::builder::build_cwbvh_from_tris;
     use obvhs::triangle::Triangle as BvhTriangle;
@@ -457,7 +453,7 @@ mod tests {
                 }
             })
             .collect();
-        let bvh = build_cwbvh_from_tris(
+        let mut bvh = build_cwbvh_from_tris(
             &tris,
             BvhBuildParams::medium_build(),
             &mut Duration::default(),
@@ -468,14 +464,10 @@ mod tests {
             8
         );
         assert_eq!(stack_entries(&bvh.nodes), 8);
-        let ordered: Vec<TriangleGeom> = bvh
-            .primitive_indices
-            .iter()
-            .map(|&i| {
-                let t = &tris[i as usize];
-                TriangleGeom::new(t.v0.into(), t.v1.into(), t.v2.into())
-            })
-            .collect();
+        let blocks = into_blocks(&mut bvh.nodes, &mut bvh.primitive_indices, |i| {
+            let t = &tris[i as usize];
+            TriangleGeom::new(t.v0.into(), t.v1.into(), t.v2.into())
+        });
         let origin = Vec3::new(-5.0, 0.0, 0.0);
         let mut ray = BvhRay::new(origin.into(), Vec3A::X, 0.0, f32::INFINITY);
         let (entered, _, _) = child_entries(&bvh.nodes[0], &ray);
@@ -483,7 +475,7 @@ mod tests {
         let mut stack = vec![Pending::uninit(); 8];
         let hit = closest_hit(
             &bvh.nodes,
-            &ordered,
+            &blocks,
             (origin, Vec3::X, 0.0),
             &mut ray,
             &mut stack,

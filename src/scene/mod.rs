@@ -19,6 +19,7 @@ pub mod obj;
 pub mod shadow_order;
 pub mod texture;
 pub mod toml_file;
+pub mod triangle_block;
 
 use crate::bsdf::blend::Blend;
 use crate::bsdf::bump::{Bump, BumpMap, NormalSource, bumped_normal, mapped_normal, uv_partials};
