@@ -14,6 +14,9 @@
 //! the light's emission, the camera's), or the **guided** ones, the mixture pdfs the guided
 //! samplers really draw with (a region lookup and a pdf with the guide cache), evaluated with
 //! a white path colour so that both subpaths compute the same value for the same path.
+//! (A camera path's last scattering vertex samples its BSDF alone, `walk::Start::max_segments`,
+//! where these densities still read the mixture: there the weights' density is not the one
+//! drawn with, which the partition below allows.)
 //! Either way the weights are a partition of unity for every path, so the combined estimate
 //! stays unbiased (Veach 1997, §9.2.2: any weights that sum to one over the strategies able to
 //! make a path will do); the guided densities weigh each path by how likely the guided

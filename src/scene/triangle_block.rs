@@ -170,7 +170,7 @@ mod tests {
     #[test]
     fn a_block_finds_what_a_loop_over_its_triangles_finds() {
         let mut rng = Rng::new(41, 0, 0);
-        let mut p = |rng: &mut Rng| Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
+        let p = |rng: &mut Rng| Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
         let mut hits = 0;
         for i in 0..20_000 {
             let n = 1 + i % LEAF_TRIANGLES;
