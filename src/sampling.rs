@@ -88,6 +88,37 @@ pub struct Distribution1D {
     cdf: Vec<f32>,
     pmf: Vec<f32>,
     total: f64,
+    /// A guide table over `cdf` (the cutpoint method, Chen & Asau 1974): with `m =
+    /// guide.len() - 1` cells, a power of two, `guide[k]` is the last index `i` with
+    /// `cdf[i] <= k / m`. A number `u` of cell `k = floor(u m)` then has its item between
+    /// `guide[k]` and `guide[k + 1]`, and the search is over that short stretch of `cdf`
+    /// instead of all of it: one or two cache lines where the binary search over a large
+    /// distribution (a scene's tens of thousands of emitting triangles) misses the cache at
+    /// every level. Empty for small distributions, which search all of `cdf`.
+    guide: Vec<u32>,
+}
+
+/// Distributions of at least this many items get a guide table ([`Distribution1D::guide`]).
+const GUIDE_MIN_ITEMS: usize = 64;
+
+/// The guide table of `cdf` (non-decreasing, `cdf[0] = 0`) with about one cell per two
+/// items: `k / m` is exact in `f32` for a power of two `m` up to `2^24`.
+fn guide_table(cdf: &[f32]) -> Vec<u32> {
+    let n = cdf.len() - 1;
+    if n < GUIDE_MIN_ITEMS {
+        return Vec::new();
+    }
+    let m = (n.next_power_of_two() / 2).min(1 << 24);
+    let mut guide = Vec::with_capacity(m + 1);
+    let mut i = 0usize;
+    for k in 0..=m {
+        let t = k as f32 / m as f32;
+        while i + 1 < cdf.len() && cdf[i + 1] <= t {
+            i += 1;
+        }
+        guide.push(i as u32);
+    }
+    guide
 }
 
 impl Distribution1D {
@@ -117,7 +148,13 @@ impl Distribution1D {
         }
         *cdf.last_mut().unwrap() = 1.0;
         let pmf = clean.iter().map(|&w| (w / total) as f32).collect();
-        Some(Distribution1D { cdf, pmf, total })
+        let guide = guide_table(&cdf);
+        Some(Distribution1D {
+            cdf,
+            pmf,
+            total,
+            guide,
+        })
     }
 
     pub fn len(&self) -> usize {
@@ -137,13 +174,9 @@ impl Distribution1D {
     /// returned.
     #[inline]
     pub fn sample(&self, u: f32) -> (usize, f32) {
-        // First index whose cdf exceeds u: cdf[i] <= u < cdf[i+1].
+        // The last index with cdf[i] <= u (cdf[i] <= u < cdf[i+1]).
         let n = self.pmf.len();
-        let mut i = self
-            .cdf
-            .partition_point(|&c| c <= u)
-            .saturating_sub(1)
-            .min(n - 1);
+        let mut i = self.last_at_or_below(u).min(n - 1);
         // Skip zero-probability items that rounding could select.
         while self.pmf[i] == 0.0 && i + 1 < n {
             i += 1;
@@ -152,6 +185,24 @@ impl Distribution1D {
             i -= 1;
         }
         (i, self.pmf[i])
+    }
+
+    /// The last index `i` with `cdf[i] <= u` (0 when there is none: a negative or NaN `u`),
+    /// by the guide table where there is one: the same index as the search over all of
+    /// `cdf` (`tests::the_guide_table_finds_what_the_whole_search_finds`).
+    #[inline]
+    fn last_at_or_below(&self, u: f32) -> usize {
+        let whole = |cdf: &[f32]| cdf.partition_point(|&c| c <= u).saturating_sub(1);
+        if self.guide.is_empty() || !(u >= 0.0) {
+            return whole(&self.cdf);
+        }
+        let m = self.guide.len() - 1;
+        // `u m` is exact (m a power of two), so `k / m <= u < (k + 1) / m` for `u` in
+        // [0, 1); the clamp takes `u >= 1` to the last cell, whose bounds still hold.
+        let k = ((u * m as f32) as usize).min(m - 1);
+        let (lo, hi) = (self.guide[k] as usize, self.guide[k + 1] as usize);
+        // cdf[lo] <= k / m: the answer is lo or one of the indices after it up to hi.
+        lo + self.cdf[lo + 1..=hi.max(lo)].partition_point(|&c| c <= u)
     }
 
     /// [`Distribution1D::sample`], and `u` stretched back to `[0, 1)` within the chosen
@@ -183,6 +234,53 @@ impl Distribution1D {
 #[cfg(test)]
 mod tests {
     use super::Distribution1D;
+    use crate::rng::Rng;
+
+    /// The guide table's search returns the index the search over the whole cdf returns,
+    /// for every kind of `u` (uniform, on and beside every cdf value and cell boundary, 0,
+    /// 1, beyond, negative, NaN) over distributions with runs of empty items, one dominant
+    /// item and weights spanning twelve decades.
+    #[test]
+    fn the_guide_table_finds_what_the_whole_search_finds() {
+        let mut rng = Rng::new(3, 1, 4);
+        for (case, n) in [64usize, 65, 100, 1000, 4097].into_iter().enumerate() {
+            let weights: Vec<f32> = (0..n)
+                .map(|i| match case {
+                    0 => 1.0,
+                    1 if i == 7 => 1e6,
+                    1 => 1.0,
+                    _ if i % 5 < 2 => 0.0,
+                    _ => 10f32.powf(12.0 * rng.uniform() - 6.0),
+                })
+                .collect();
+            let d = Distribution1D::new(&weights).unwrap();
+            assert!(!d.guide.is_empty(), "{n} items have a guide table");
+            let whole = |u: f32| d.cdf.partition_point(|&c| c <= u).saturating_sub(1);
+            let m = (d.guide.len() - 1) as f32;
+            let mut us = vec![
+                0.0,
+                1.0,
+                1.5,
+                f32::INFINITY,
+                -0.25,
+                f32::NAN,
+                f32::MIN_POSITIVE,
+            ];
+            us.extend((0..20_000).map(|_| rng.uniform()));
+            for &c in &d.cdf {
+                us.extend([c, c.next_down(), c.next_up()]);
+            }
+            for k in 0..=d.guide.len() {
+                let b = k as f32 / m;
+                us.extend([b, b.next_down(), b.next_up()]);
+            }
+            for u in us {
+                assert_eq!(d.last_at_or_below(u), whole(u), "{n} items, u = {u:e}");
+            }
+        }
+        let small = Distribution1D::new(&[1.0; 63]).unwrap();
+        assert!(small.guide.is_empty());
+    }
 
     /// The stretched number is uniform within each choice and independent of it: `n` evenly
     /// spaced `u` put `n pmf_i` numbers in item `i`, and those fall evenly into ten bins of
