@@ -395,8 +395,8 @@ fn erf(x: f64) -> f64 {
 }
 
 /// Inverse of [`erf`]: M. Giles' approximation ("Approximating the erfinv function", GPU
-/// Computing Gems, 2011) refined by Newton steps on [`erf`], so that the two are inverses to
-/// double precision.
+/// Computing Gems, 2011) refined by a Newton step on [`erf`], so that the two are inverses
+/// to within 2e-13.
 fn erfinv(y: f64) -> f64 {
     if y <= -1.0 {
         return f64::NEG_INFINITY;
@@ -434,15 +434,12 @@ fn erfinv(y: f64) -> f64 {
         ];
         c.iter().fold(0.0, |acc, &ci| acc * w + ci)
     };
-    let mut x = p * y;
-    for _ in 0..2 {
-        let d = 2.0 * INV_SQRT_PI * (-x * x).exp();
-        if d <= 0.0 {
-            break;
-        }
-        x -= (erf(x) - y) / d;
-    }
-    x
+    // One Newton step: Giles' single-precision fit is within about 1e-7, and the step
+    // squares that (the two within 2e-13 of inverses for |y| < 1 - 2e-9, the sampler's range;
+    // a second step costs two more exponentials for nothing `erf`'s own 1.2e-7 can show).
+    let x = p * y;
+    let d = 2.0 * INV_SQRT_PI * (-x * x).exp();
+    if d > 0.0 { x - (erf(x) - y) / d } else { x }
 }
 
 #[cfg(test)]
