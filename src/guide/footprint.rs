@@ -147,15 +147,15 @@ fn golden_turns() -> &'static [(f32, f32)] {
 const MAX_QUADRATURE: usize = 512;
 
 /// Fewest quadrature points [`rasterise_caps`] spreads a cap over that crosses a cell
-/// boundary (two per cell it covers above this). Most of a region's caps are smaller than
-/// a few cells and cross one (Bitterli's box: about 320 caps in each of 2,653 regions, all but
-/// 1,032 of them crossing), so this floor sets most of the rasterisation's time, the larger share of a
-/// cache build. With `n` points a crossing cap's mass lands in its cells to within about
-/// `1/n` of it, errors of either sign from cap to cap: over the `N` caps that make a cell,
-/// the relative error is about `1/(n √N)` beside the particles' own `1/√N`, adding
-/// `1/n²` to the distribution's relative variance: 1.6% at 8, 0.4% at 16. At 8 a cache
-/// build takes about a quarter less time (docs/measurements/speed.md, "Maps and caches
-/// before the first pass").
+/// boundary (two per cell it covers above this). Most of a region's caps are smaller than a
+/// few cells and cross one (Bitterli's box: about 320 caps in each of 2,653 regions, all but
+/// 1,032 of them crossing), so this floor sets most of the rasterisation's time, the larger
+/// share of a cache build. With `n` points a crossing cap's mass lands in its cells to
+/// within about `1/n` of it, errors of either sign from cap to cap: over the `N` caps that
+/// make a cell, the relative error is about `1/(n √N)` beside the particles' own `1/√N`,
+/// adding `1/n²` to the distribution's relative variance: 1.6% at 8, 0.4% at 16. At 8 the
+/// photon cache builds a tenth to a fifth faster (docs/measurements/speed.md, "Maps and
+/// caches before the first pass").
 const MIN_QUADRATURE: usize = 8;
 
 /// A node of the bounding-volume hierarchy over the caps: the box of its caps' boxes
@@ -293,9 +293,10 @@ impl FootprintDistribution {
     /// (`c_p` of eq. 15, the channel totals kept) into the equal-area grid of `side` cells
     /// per hemisphere's side around `frame.z` ([`GridDistribution`]): all of it into one
     /// cell when the cap's centre and its four extreme points lie in that cell, else spread
-    /// over [`Cap::quadrature`] points, two per cell of the cap's size and at least 16.
-    /// Sampling and its pdf then cost a cell search and a lookup instead of a walk over the
-    /// caps; the density is the footprints' smoothed over cells of `2π / side²` steradians.
+    /// over [`Cap::quadrature`] points, two per cell of the cap's size and at least
+    /// [`MIN_QUADRATURE`]. Sampling and its pdf then cost a cell search and a lookup instead
+    /// of a walk over the caps; the density is the footprints' smoothed over cells of
+    /// `2π / side²` steradians.
     pub fn rasterise(&self, frame: &Frame, side: usize) -> GridDistribution {
         let totals = [self.totals.x, self.totals.y, self.totals.z];
         rasterise_caps(
