@@ -269,6 +269,18 @@ fn auto_without_room_for_a_pilot_renders_unguided() {
     );
 }
 
+/// The glow scene (easy per sample) and door at 128x128 (hard), each with `paths` photon and
+/// importon paths, named and marked hard.
+fn easy_and_hard(paths: usize) -> [(&'static str, Scene, bool); 2] {
+    let mut door = load_scene(&common::scene_path("door")).unwrap();
+    door.camera = door.camera.with_resolution(128, 128).unwrap();
+    [("glow", glow_scene(), false), ("door", door, true)].map(|(name, mut scene, hard)| {
+        scene.maps.photons = paths;
+        scene.maps.importons = paths;
+        (name, scene, hard)
+    })
+}
+
 /// Guides are piloted only where the scene is hard per sample: where the camera sees mostly
 /// the light's glow one unguided pass has a small relative variance and no guide is piloted
 /// (its maps would fit: small maps, a long sample budget); on door, whose light reaches the
@@ -278,12 +290,7 @@ fn auto_without_room_for_a_pilot_renders_unguided() {
 /// the timings make best could decide the test.
 #[test]
 fn only_scenes_hard_per_sample_pilot_guides() {
-    let easy = glow_scene();
-    let mut hard = load_scene(&common::scene_path("door")).unwrap();
-    hard.camera = hard.camera.with_resolution(128, 128).unwrap();
-    for (name, mut scene, guided) in [("glow", easy, false), ("door", hard, true)] {
-        scene.maps.photons = 20_000;
-        scene.maps.importons = 20_000;
+    for (name, scene, guided) in easy_and_hard(20_000) {
         let o = RenderOptions {
             spp: 4000,
             ..opts()
@@ -305,6 +312,35 @@ fn only_scenes_hard_per_sample_pilot_guides() {
             .iter()
             .any(|c| c.method.ends_with("-footprint"));
         assert_eq!(piloted, guided, "{name}: {c:?}");
+    }
+}
+
+/// Where no guide's maps fit a short budget, a scene hard per sample bets on guided path
+/// tracing unpiloted, and an easy one renders unguided. Door at 128x128 (one unguided pass:
+/// 196-419, far above `HARD_PASS_VARIANCE`, 10) and the glow scene (0.01-0.8), with
+/// particle passes of two million paths each (estimated at about 20 s, far over 30% of the
+/// 12-s budget) and room for the unguided pilot (40 pairs of door's passes take about 5 s).
+#[test]
+fn a_hard_scene_whose_maps_do_not_fit_renders_guided_path_tracing() {
+    for (name, scene, bet) in easy_and_hard(2_000_000) {
+        let o = RenderOptions {
+            time: Some(12.0),
+            ..opts()
+        };
+        let c = choose(&scene, &o, &AutoSpec::all());
+        eprintln!("{name}: {}", c.reason());
+        let unpiloted = matches!(c.decision, Decision::HardSceneUnpiloted { .. });
+        assert_eq!(unpiloted, bet, "{name}: {c:?}");
+        if bet {
+            assert_eq!(c.method.name(), "pt-footprint", "{c:?}");
+            assert!(c.guidance.is_none(), "the render builds the maps");
+            assert!(
+                c.noted(|n| matches!(n, Note::MapsTooCostly { .. })),
+                "{c:?}"
+            );
+        } else {
+            assert!(!c.method.guided(), "{name}: {c:?}");
+        }
     }
 }
 

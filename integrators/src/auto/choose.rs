@@ -220,6 +220,19 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     let horizon = |spent: f64| horizon(opts, spent, secs[1]);
     let easy_scene = best_unguided(horizon(start.elapsed().as_secs_f64()))
         .filter(|c| c.pass_variance < GUIDED_MIN_PASS_VARIANCE);
+    // Path tracing this hard per sample bets on guided path tracing where no guide can be
+    // piloted (HARD_PASS_VARIANCE): read on `pt-bsdf`'s own passes (the combined image's
+    // are less noisy per pass and slower, and on Veach Ajar read under the threshold where
+    // `pt-bsdf`'s read 22-29), unless light tracing is the best unguided candidate (a
+    // scene whose light the light tracer finds, Veach Bidir's) or path tracing misses light
+    // (checked below, with `misses_light`).
+    let best_is_lt = best_unguided(horizon(start.elapsed().as_secs_f64()))
+        .is_some_and(|c| c.method.starts_with("lt-"));
+    let hard_scene = unguided_alone
+        .iter()
+        .find(|c| c.method == "pt-bsdf")
+        .filter(|c| c.pass_variance >= HARD_PASS_VARIANCE && !best_is_lt)
+        .map(|c| (c.method.clone(), c.pass_variance));
     // A direction whose unguided layer misses more light (`b²`, which no time removes) than
     // the best unguided candidate's whole predicted error cannot win guided either: a guide
     // does not make the paths it cannot make (a light tracer still cannot see through glass),
@@ -258,6 +271,37 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     let unguided_s = start.elapsed().as_secs_f64();
     // ---- Guided pilots, when their maps fit ----
     let guided = pilot_guides(&plan, secs[1], pixel_ratio, &mut notes);
+    // No guide piloted because none fit the budget, on a scene hard per sample: guided path
+    // tracing with the guide piloted first (the paper's footprints), its maps built with the
+    // time left, rather than an unguided method.
+    let first_guide = footprint::guide::GUIDES
+        .iter()
+        .rev()
+        .find(|g| g.uses_particles() && wanted(spec, &format!("pt-{}", g.name())));
+    let none_fit = guided.pilots.is_empty()
+        && !plan.misses_light[0]
+        && notes
+            .iter()
+            .any(|n| matches!(n, Note::MapsTooCostly { .. }));
+    if let (Some((unguided, pass_variance)), Some(g), true) = (&hard_scene, first_guide, none_fit) {
+        let mut c = Choice::unpiloted(
+            &spec.label,
+            find("pt", g.name()),
+            Decision::HardSceneUnpiloted {
+                unguided: unguided.clone(),
+                pass_variance: *pass_variance,
+            },
+        );
+        c.notes = notes;
+        c.pilot = PilotTimes {
+            total: start.elapsed(),
+            unguided_s,
+            maps_s: guided.maps_s,
+            guided_passes_s: guided.passes_s,
+            passes: pilot.layers[0].n,
+        };
+        return c;
+    }
     // Said where the view pass read a target of the image's size (not only where it was
     // decided: a method without light paths builds none).
     if let Some(Some(t)) = &guided.target

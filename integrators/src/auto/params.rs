@@ -38,6 +38,18 @@ pub const MAPS_BUILD_FACTOR: f64 = 1.7;
 /// its guides are piloted on some (1.22x), and the breakfast room (about 9.7) pays for a
 /// guided pilot (1.2x): docs/auto.md, "The pilot", and docs/measurements/auto.md.
 pub const GUIDED_MIN_PASS_VARIANCE: f64 = 4.0;
+/// Where no guide's maps fit their share of a short budget, a scene on which path tracing is
+/// at least this hard per sample (one pass of `pt-bsdf` at this relative variance) renders
+/// guided path tracing with the first guide unpiloted rather than the best unguided
+/// candidate, unless light tracing is that candidate or path tracing misses light: on Veach
+/// Ajar at 8 s the guided pilot often does not fit 30% of the budget, and the unguided method
+/// `auto` rendered had 3-5x guided path tracing's error (docs/auto.md, "The choice"). The
+/// scenes this hard read 22-29 (Veach Ajar at 128x72, from one pilot to the next), 45 (the
+/// slit room) and about 190 (door at 128x128), and guided path tracing wins on them at 2-4x;
+/// those where guiding is even or behind read under 10 (the list at
+/// [`GUIDED_MIN_PASS_VARIANCE`]; Veach MIS up to 9.8, whose maps fit a pilot at 8 s). A wrong
+/// bet costs what guiding costs where it does not pay, 1.0-1.4x; a right one wins 2-4x.
+pub const HARD_PASS_VARIANCE: f64 = 10.0;
 /// A guided candidate is chosen only when predicted better than BSDF sampling of its own
 /// integrator by this factor (else the next candidate is). The pilot's passes are
 /// independent samples, but the render's are a Sobol sequence, whose stratification gains
