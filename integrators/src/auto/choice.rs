@@ -23,13 +23,10 @@ pub enum Decision {
     NoLight,
     /// No candidate could be piloted: the first one.
     NothingPiloted,
-    /// No guide's maps fit their share of the budget, but one pass of unguided path tracing
-    /// (`unguided`, `pt-bsdf`) has relative variance `pass_variance`, at least
-    /// `HARD_PASS_VARIANCE`: guided path tracing, its maps built with the time left.
-    HardSceneUnpiloted {
-        unguided: String,
-        pass_variance: f64,
-    },
+    /// No guide's maps fit their share of the budget, but one pass of `pt-bsdf` has relative
+    /// variance `pass_variance`, at least `HARD_PASS_VARIANCE`: guided path tracing, its maps
+    /// built with the time left.
+    HardSceneUnpiloted { pass_variance: f64 },
     /// The candidate predicted best (after the margins): [`Choice::candidates`]' first.
     Predicted {
         /// The time left that every candidate was predicted at.
@@ -263,11 +260,8 @@ impl Choice {
                 "{name}: no candidate could be piloted ({})",
                 notes().join("; ")
             ),
-            Decision::HardSceneUnpiloted {
-                unguided,
-                pass_variance,
-            } => format!(
-                "{name}, not piloted: one pass of {unguided} has relative variance {pass_variance:.1}, at least {} (guided path tracing wins by far on scenes this hard), and no guide's maps fit a pilot ({})",
+            Decision::HardSceneUnpiloted { pass_variance } => format!(
+                "{name}, not piloted: one pass of pt-bsdf has relative variance {pass_variance:.1}, at least {} (guided path tracing wins by far on scenes this hard), and no guide's maps fit a pilot ({})",
                 super::params::HARD_PASS_VARIANCE,
                 notes().join("; ")
             ),

@@ -231,8 +231,8 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     let hard_scene = unguided_alone
         .iter()
         .find(|c| c.method == "pt-bsdf")
-        .filter(|c| c.pass_variance >= HARD_PASS_VARIANCE && !best_is_lt)
-        .map(|c| (c.method.clone(), c.pass_variance));
+        .map(|c| c.pass_variance)
+        .filter(|&v| v >= HARD_PASS_VARIANCE && !best_is_lt);
     // A direction whose unguided layer misses more light (`b²`, which no time removes) than
     // the best unguided candidate's whole predicted error cannot win guided either: a guide
     // does not make the paths it cannot make (a light tracer still cannot see through glass),
@@ -271,6 +271,14 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     let unguided_s = start.elapsed().as_secs_f64();
     // ---- Guided pilots, when their maps fit ----
     let guided = pilot_guides(&plan, secs[1], pixel_ratio, &mut notes);
+    // Where the pilot's time went (`total` set where the choice is made).
+    let times = PilotTimes {
+        total: Duration::ZERO,
+        unguided_s,
+        maps_s: guided.maps_s,
+        guided_passes_s: guided.passes_s,
+        passes: pilot.layers[0].n,
+    };
     // No guide piloted because none fit the budget, on a scene hard per sample: guided path
     // tracing with the guide piloted first (the paper's footprints), its maps built with the
     // time left, rather than an unguided method.
@@ -283,22 +291,13 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
         && notes
             .iter()
             .any(|n| matches!(n, Note::MapsTooCostly { .. }));
-    if let (Some((unguided, pass_variance)), Some(g), true) = (&hard_scene, first_guide, none_fit) {
-        let mut c = Choice::unpiloted(
-            &spec.label,
-            find("pt", g.name()),
-            Decision::HardSceneUnpiloted {
-                unguided: unguided.clone(),
-                pass_variance: *pass_variance,
-            },
-        );
+    if let (Some(pass_variance), Some(g), true) = (hard_scene, first_guide, none_fit) {
+        let decision = Decision::HardSceneUnpiloted { pass_variance };
+        let mut c = Choice::unpiloted(&spec.label, find("pt", g.name()), decision);
         c.notes = notes;
         c.pilot = PilotTimes {
             total: start.elapsed(),
-            unguided_s,
-            maps_s: guided.maps_s,
-            guided_passes_s: guided.passes_s,
-            passes: pilot.layers[0].n,
+            ..times
         };
         return c;
     }
@@ -333,13 +332,6 @@ pub fn choose(scene: &Scene, opts: &RenderOptions, spec: &AutoSpec) -> Choice {
     }
     all.retain(|c| wanted(spec, &c.method));
     notes.extend(rank(&mut all));
-    let times = PilotTimes {
-        total: Duration::ZERO,
-        unguided_s,
-        maps_s: guided.maps_s,
-        guided_passes_s: guided.passes_s,
-        passes: pilot.layers[0].n,
-    };
     let Some(best) = all.first() else {
         let mut c = Choice::unpiloted(&spec.label, spec.candidates[0], Decision::NothingPiloted);
         c.notes = notes;
