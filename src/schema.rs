@@ -275,7 +275,7 @@ pub const SETTINGS: &[Setting] = &[
         "map-grow",
         Switch,
         Never,
-        "With --time: when the photon map's guide cache is sparse (under 80% of its regions guide, or their particles fill under 60% of region_particles), the light pass shoots 2, 4, 8 or 16 times its paths, as many as fit 15% of the budget (on), or keeps its count (off); not with several map rounds or --guide-cache off",
+        "With --time: when the photon map's guide cache is sparse (under 80% of its regions guide, or their particles fill under 60% of region_particles), unless most of its regions guide and most of the light arriving in them is direct, the light pass shoots 2, 4, 8 or 16 times its paths, as many as fit 15% of the budget (on), or keeps its count (off); not with several map rounds or --guide-cache off",
     ),
     s(
         Maps,

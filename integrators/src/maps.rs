@@ -329,6 +329,17 @@ pub const GROWTH_SHARE: f64 = 0.15;
 pub const SPARSE_GUIDING: f64 = 0.8;
 /// ...or its guiding regions hold on average less than this share of `region_particles`.
 pub const SPARSE_FILL: f64 = 0.6;
+/// The least share of indirect light ([`indirect_share`]) in a sparse photon cache's regions
+/// for its map to grow, where at least [`MAX_GUIDING_TO_WEIGH_LIGHT`] of them guide. Where
+/// light reaches the regions mostly directly (a scene open to a sky or an environment map),
+/// a denser guide of indirect light pays for less than its passes: at 8 s the material
+/// preview (7% indirect) and the living room (22%) render with less error ungrown.
+/// Veach Ajar, door and the slit room, where guiding pays and growth with it, read 60-72%
+/// (docs/measurements/public-scenes.md, "Photon map growth and indirect light").
+pub const MIN_INDIRECT_SHARE: f64 = 0.5;
+/// The share of a sparse cache's regions that guide below which its map grows whatever the
+/// light ([`growth`]): the dining room's (no region guides) renders with less error grown.
+pub const MAX_GUIDING_TO_WEIGH_LIGHT: f64 = 0.5;
 /// Most doublings of a pass (16 times its paths).
 pub const MAX_GROWTHS: u32 = 4;
 
@@ -353,6 +364,79 @@ pub fn sparse(st: &CacheStats, params: &GuideParams) -> Option<String> {
             100.0 * fill
         )
     })
+}
+
+/// The share of the light arriving in `cache`'s regions that came by at least `min_depth`
+/// segments: what a guide of `min_depth` particles can lead to, against the direct light
+/// (depth 1) that next-event estimation samples. `particles` are the light pass's, every
+/// depth; each counts in the region its position and normal fall in (luminance of its flux).
+/// `None` when no particle falls in a region.
+pub fn indirect_share(
+    cache: &GuideCache,
+    particles: &[ParticleInput],
+    min_depth: u16,
+) -> Option<f64> {
+    // Chunks summed in order: the same share on any thread count.
+    let sums: Vec<(f64, f64)> = particles
+        .par_chunks(1 << 14)
+        .map(|chunk| {
+            let (mut all, mut indirect) = (0.0f64, 0.0f64);
+            for p in chunk {
+                if cache.lookup_index(p.position, p.normal).is_some() {
+                    let l = footprint::math::luminance(p.weight) as f64;
+                    all += l;
+                    if p.depth >= min_depth {
+                        indirect += l;
+                    }
+                }
+            }
+            (all, indirect)
+        })
+        .collect();
+    let (all, indirect) = sums
+        .iter()
+        .fold((0.0, 0.0), |(a, i), &(x, y)| (a + x, i + y));
+    (all > 0.0).then(|| indirect / all)
+}
+
+/// Whether a photon map grows with a time budget ([`Guidance::grow_within`]).
+pub enum Growth {
+    /// The cache is not [`sparse`]: the map keeps its count.
+    Dense,
+    /// The cache is sparse, but most of its regions guide and under [`MIN_INDIRECT_SHARE`]
+    /// of the light arriving in them is indirect: the map keeps its count; the run
+    /// summary's line says why.
+    MostlyDirect(String),
+    /// The map grows, for this reason.
+    Grows(String),
+}
+
+/// Whether the photon map whose light pass stored `particles` grows, its cache `cache`.
+pub fn growth(cache: &GuideCache, particles: &[ParticleInput], params: &GuideParams) -> Growth {
+    let Some(why) = sparse(&cache.stats, params) else {
+        return Growth::Dense;
+    };
+    // A cache where most regions cannot guide at all grows whatever the light: its vertices
+    // are neither guided nor steered by guided Russian roulette, and growth makes them so.
+    let guiding = cache.stats.guiding as f64 / cache.stats.regions.max(1) as f64;
+    if guiding < MAX_GUIDING_TO_WEIGH_LIGHT {
+        return Growth::Grows(why);
+    }
+    // A guide leads only to light of `min_depth` segments or more: where most of what
+    // arrives in the regions is direct light, which next-event estimation samples, a
+    // denser guide has little to gain.
+    match indirect_share(cache, particles, params.min_depth) {
+        Some(share) if share >= MIN_INDIRECT_SHARE => Growth::Grows(format!(
+            "{why}, {:.0}% of the light arriving in them indirect",
+            100.0 * share
+        )),
+        share => Growth::MostlyDirect(format!(
+            "maps not grown: {why}, but {:.0}% of the light arriving in the regions is \
+             indirect (at least {:.0}% grows)",
+            100.0 * share.unwrap_or(0.0),
+            100.0 * MIN_INDIRECT_SHARE
+        )),
+    }
 }
 
 impl Guidance {
@@ -439,8 +523,13 @@ impl Guidance {
         let (Some(photons), Some(cache)) = (&self.photons, &self.photon_cache) else {
             return self;
         };
-        let Some(why) = sparse(&cache.stats, params) else {
-            return self;
+        let why = match growth(cache, &photons.pass.particles, params) {
+            Growth::Grows(why) => why,
+            Growth::Dense => return self,
+            Growth::MostlyDirect(line) => {
+                self.summaries.push(line);
+                return self;
+            }
         };
         // The largest doubling whose passes and builds (the first, and the grown one, taken
         // to grow with the particles) fit the share.

@@ -198,3 +198,69 @@ fn a_second_guide_builds_from_the_first_guides_particles() {
         );
     }
 }
+
+/// A sparse photon map grows where most of the light arriving in its cache's regions is
+/// indirect, what a guide of `min_depth` particles leads to (`maps::indirect_share`), or where
+/// most of its regions cannot guide at all. The slit room's camera room is lit through the
+/// slit (60% indirect); the features scene mostly straight from its lights and sky (10%),
+/// with 89% of its regions guiding; the meshes scene at 20,000 photons as directly, but with
+/// few regions guiding. Where a sparse map does not grow the run summary says why.
+#[test]
+fn a_sparse_map_grows_where_the_light_arriving_is_mostly_indirect() {
+    use footprint_integrators::maps::{
+        Growth, Guidance, MAX_GUIDING_TO_WEIGH_LIGHT, MIN_INDIRECT_SHARE, growth, indirect_share,
+    };
+    use std::time::Duration;
+    let method = footprint_integrators::Method::parse("pt-footprint").unwrap();
+    let params = footprint::settings::GuideParams::default();
+    let pass = pass_settings(0, 3);
+    let xml = |name: &str| {
+        let path = crate::common::scenes_dir().join(name).join("scene.xml");
+        load_scene(&path).unwrap()
+    };
+    let mut meshes = xml("meshes");
+    meshes.maps.photons = 20_000;
+    // (scene, mostly indirect, most regions guide)
+    for (name, scene, indirect, guiding) in [
+        ("slit", xml("slit"), true, true),
+        ("features", xml("features"), false, true),
+        ("meshes", meshes, false, false),
+    ] {
+        let plain = Guidance::build_within(&scene, &method, &params, &pass, None, &|| None);
+        let cache = plain.photon_cache.as_ref().unwrap();
+        let particles = &plain.photons.as_ref().unwrap().pass.particles;
+        let share = indirect_share(cache, particles, params.min_depth).unwrap();
+        // Every particle arrived in at least one segment, none in more than the walk's depth.
+        assert_eq!(indirect_share(cache, particles, 1), Some(1.0), "{name}");
+        assert_eq!(
+            indirect_share(cache, particles, u16::MAX),
+            Some(0.0),
+            "{name}"
+        );
+        assert_eq!(share >= MIN_INDIRECT_SHARE, indirect, "{name}: {share}");
+        let guiding_share = cache.stats.guiding as f64 / cache.stats.regions as f64;
+        assert_eq!(
+            guiding_share >= MAX_GUIDING_TO_WEIGH_LIGHT,
+            guiding,
+            "{name}"
+        );
+        match growth(cache, particles, &params) {
+            Growth::Grows(why) => {
+                assert!(indirect || !guiding, "{name}: {why}");
+                assert_eq!(why.contains("indirect"), guiding, "{name}: {why}");
+            }
+            Growth::MostlyDirect(line) => {
+                assert!(!indirect && guiding, "{name}: {line}");
+                // With a budget that would fit every doubling, the map keeps its count, and
+                // the run summary says why.
+                let budget = Some(Duration::from_secs(10_000));
+                let g = Guidance::build_within(&scene, &method, &params, &pass, budget, &|| None);
+                assert_eq!(g.grown, None, "{name}");
+                let paths = g.photons.as_ref().unwrap().pass.stats.paths;
+                assert_eq!(paths, scene.maps.photons, "{name}");
+                assert!(g.summaries.contains(&line), "{name}: {:?}", g.summaries);
+            }
+            Growth::Dense => panic!("{name} should be sparse: {}", cache.stats.summary()),
+        }
+    }
+}

@@ -73,9 +73,19 @@ pub fn run(
             None => Guidance::default(),
         };
         let per_rung = footprint_integrators::maps::may_grow(scene, &opts.guide_params)
-            && g.photon_cache.as_ref().is_some_and(|c| {
-                footprint_integrators::maps::sparse(&c.stats, &opts.guide_params).is_some()
-            });
+            && g.photon_cache
+                .as_ref()
+                .zip(g.photons.as_ref())
+                .is_some_and(|(c, m)| {
+                    matches!(
+                        footprint_integrators::maps::growth(
+                            c,
+                            &m.pass.particles,
+                            &opts.guide_params
+                        ),
+                        footprint_integrators::maps::Growth::Grows(_)
+                    )
+                });
         let maps = g.timings.total();
         if fixed.is_some_and(|m| m.guided()) {
             log(&format!(
