@@ -523,7 +523,12 @@ impl Guidance {
         let (Some(photons), Some(cache)) = (&self.photons, &self.photon_cache) else {
             return self;
         };
-        let why = match growth(cache, &photons.pass.particles, params) {
+        // The decision reads the light pass's particles in the cache: its time counts with
+        // the cache's.
+        let deciding = Instant::now();
+        let decided = growth(cache, &photons.pass.particles, params);
+        self.timings.cache_builds += deciding.elapsed();
+        let why = match decided {
             Growth::Grows(why) => why,
             Growth::Dense => return self,
             Growth::MostlyDirect(line) => {
