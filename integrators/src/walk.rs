@@ -106,7 +106,7 @@ pub const GUIDED_RR_MAX_EXPONENT: f32 = 50.0;
 /// Whether guided Russian roulette and splitting read a region's estimate at a vertex of
 /// `bsdf`: every lobe diffuse or at most [`GUIDED_RR_MAX_EXPONENT`] narrow.
 #[inline]
-pub fn estimates_by_irradiance(bsdf: &Bsdf) -> bool {
+fn estimates_by_irradiance(bsdf: &Bsdf) -> bool {
     guides_at_bsdf(bsdf, GUIDED_RR_MAX_EXPONENT)
 }
 
